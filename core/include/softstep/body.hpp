@@ -1,0 +1,35 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace softstep {
+
+enum class BodyType {
+  Static,     // never moves, infinite mass
+  Kinematic,  // moves with the velocity the user sets, infinite mass, feels no force
+  Dynamic,    // moves under gravity and constraints
+};
+
+// Everything a body is. Units: SI (m, kg, s, rad).
+struct BodyDef {
+  BodyType type = BodyType::Dynamic;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // centre of mass, world frame, m
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body to world, unit
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, world frame
+  double mass = 1.0;  // kg, > 0 for a dynamic body; ignored for static and kinematic
+  // Inertia tensor about the centre of mass in the body frame, kg m^2, symmetric positive
+  // definite for a dynamic body. Default: a solid 1 kg sphere of radius 0.1 m.
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Identity() * 0.004;
+  double gravity_scale = 1.0;    // multiplies the world's gravity, any finite value
+  double linear_damping = 0.0;   // 1/s, >= 0: v' = -c v
+  double angular_damping = 0.0;  // 1/s, >= 0
+};
+
+// Inertia of a solid sphere, kg m^2 (a helper for the common case).
+inline Eigen::Matrix3d solid_sphere_inertia(double mass, double radius) {
+  return Eigen::Matrix3d::Identity() * (0.4 * mass * radius * radius);
+}
+
+}  // namespace softstep

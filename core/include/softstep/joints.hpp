@@ -1,0 +1,47 @@
+#pragma once
+
+#include <Eigen/Core>
+#include <limits>
+
+#include "softstep/ids.hpp"
+#include "softstep/spring.hpp"
+
+namespace softstep {
+
+// Keeps a point of body A and a point of body B together: 3 rows, rigid or soft (a soft
+// ball joint is an isotropic spring of the given frequency in every direction).
+struct BallJointDef {
+  BodyId body_a;
+  BodyId body_b;
+  Eigen::Vector3d local_anchor_a = Eigen::Vector3d::Zero();  // m, body A frame, from its centre
+  Eigen::Vector3d local_anchor_b = Eigen::Vector3d::Zero();  // m, body B frame
+  Spring spring = Spring::rigid();
+};
+
+// Keeps the distance between two anchors at rest_length (rigid rod or spring), optionally
+// bounded by [min_length, max_length]. A rope: Spring::free() and max_length = its length.
+struct DistanceJointDef {
+  BodyId body_a;
+  BodyId body_b;
+  Eigen::Vector3d local_anchor_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d local_anchor_b = Eigen::Vector3d::Zero();
+  double rest_length = 1.0;  // m, >= 0; clamped into [min_length, max_length]
+  double min_length = 0.0;   // m, >= 0; limit row only when > 0 and the spring is not rigid
+  double max_length = std::numeric_limits<double>::infinity();  // m, >= min_length
+  Spring spring = Spring::rigid();
+};
+
+enum class JointType { Ball, Distance };
+
+// What a joint did in the last sub-step and how far it is from satisfied now.
+struct JointReading {
+  // Impulse applied to body B during the last sub-step, N s, world frame (A got the
+  // opposite). Divided by the sub-step it is the joint force.
+  Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N: impulse / sub-step
+  // Position error now, m: the anchor gap of a ball joint; for a distance joint, how far
+  // the length is outside [min, max], or from rest_length when rigid or sprung.
+  double error = 0.0;
+};
+
+}  // namespace softstep

@@ -1,0 +1,10 @@
+// softstep: soft-constraint rigid-body solver. Include this one header.
+#pragma once
+
+#include "softstep/body.hpp"
+#include "softstep/errors.hpp"
+#include "softstep/ids.hpp"
+#include "softstep/joints.hpp"
+#include "softstep/spring.hpp"
+#include "softstep/world.hpp"
+#include "softstep/world_settings.hpp"

@@ -1,0 +1,91 @@
+// The world: bodies, joints and the Soft Step solver. Not thread-safe: one thread calls it
+// at a time (the solver itself may use several).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "softstep/body.hpp"
+#include "softstep/errors.hpp"
+#include "softstep/ids.hpp"
+#include "softstep/joints.hpp"
+#include "softstep/world_settings.hpp"
+
+namespace softstep {
+
+// A body as it is now.
+struct BodyState {
+  BodyType type;
+  Eigen::Vector3d position;
+  Eigen::Quaterniond orientation;
+  Eigen::Vector3d linear_velocity;
+  Eigen::Vector3d angular_velocity;
+  double mass;               // kg (0 for static and kinematic)
+  Eigen::Matrix3d inertia;   // body frame, kg m^2
+  double gravity_scale;
+  double linear_damping;
+  double angular_damping;
+};
+
+// How the solver has laid out the joints (see graph_coloring/).
+struct SolverLayout {
+  SimdWidth simd;            // width in use (never Best)
+  int lanes;                 // 1, 4 or 8
+  int colors_used;
+  std::vector<std::uint32_t> joints_per_color;
+  std::uint32_t overflow_joints;
+  double lane_fill;          // real joints / lanes in coloured groups
+};
+
+class World {
+ public:
+  explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const WorldSettings& settings() const;
+  void set_settings(const WorldSettings& settings);
+
+  BodyId create_body(const BodyDef& def);
+  // Destroys the body and every joint attached to it.
+  void destroy_body(BodyId id);
+  bool is_valid(BodyId id) const;
+  BodyState body(BodyId id) const;
+  void set_position(BodyId id, const Eigen::Vector3d& position);
+  void set_orientation(BodyId id, const Eigen::Quaterniond& orientation);
+  void set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity);
+  void set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity);
+  void set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia);
+  std::size_t body_count() const;
+
+  JointId create_ball_joint(const BallJointDef& def);
+  JointId create_distance_joint(const DistanceJointDef& def);
+  void destroy_joint(JointId id);
+  bool is_valid(JointId id) const;
+  JointType joint_type(JointId id) const;
+  JointReading joint_reading(JointId id) const;
+  std::size_t joint_count() const;
+
+  // Advances the world by dt seconds (> 0, finite) in settings().substeps sub-steps.
+  void step(double dt);
+
+  SolverLayout solver_layout() const;
+  // Hash of everything the world holds (bodies, joints, their impulses, settings, ids):
+  // equal hashes mean equal worlds, bit for bit. For determinism checks and tests. The SIMD
+  // width and thread count are left out: they never change a result.
+  std::uint64_t state_hash() const;
+
+  // A point given in world coordinates, expressed in the body's frame (for joint anchors).
+  Eigen::Vector3d local_point(BodyId id, const Eigen::Vector3d& world_point) const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace softstep

@@ -1,0 +1,52 @@
+#include "softstep/spring.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace softstep {
+
+namespace {
+double omega_of(double hertz) { return 2.0 * std::numbers::pi * hertz; }
+}  // namespace
+
+Spring Spring::designer(double frames, Oscillation oscillation, double frame_rate) {
+  const double zeta = oscillation == Oscillation::Free ? 0.0 : oscillation == Oscillation::Some ? 0.5 : 1.0;
+  return {frame_rate / frames, zeta};
+}
+
+Spring Spring::from_stiffness(double k, double c, double effective_mass) {
+  if (k == 0.0) return free();
+  const double omega = std::sqrt(k / effective_mass);
+  return {omega / (2.0 * std::numbers::pi), c / (2.0 * effective_mass * omega)};
+}
+
+Spring Spring::from_erp_cfm(double erp, double cfm, double effective_mass, double h) {
+  // Talk 2:3:2 inverted: CFM = gamma = 1/(c + h k) and ERP = beta = h k/(c + h k) give
+  // h k = ERP / CFM and c = 1/CFM - h k.
+  const double k = erp / (h * cfm);
+  const double c = (1.0 - erp) / cfm;
+  return from_stiffness(k, c, effective_mass);
+}
+
+double Spring::stiffness(double effective_mass) const {
+  const double omega = omega_of(hertz);
+  return effective_mass * omega * omega;
+}
+
+double Spring::damping(double effective_mass) const {
+  return 2.0 * effective_mass * damping_ratio * omega_of(hertz);
+}
+
+SoftCoefficients Spring::coefficients(double effective_mass, double h) const {
+  if (is_rigid()) return {0.0, 1.0, 1.0 / h, 1.0, 0.0};
+  if (is_free()) return {std::numeric_limits<double>::infinity(), 0.0, 0.0, 0.0, 1.0};
+  const double k = stiffness(effective_mass);
+  const double c = damping(effective_mass);
+  const double gamma = 1.0 / (c + h * k);
+  const double beta = h * k / (c + h * k);
+  const double omega = omega_of(hertz);
+  const double a = h * omega * (2.0 * damping_ratio + h * omega);
+  return {gamma, beta, beta / h, a / (1.0 + a), 1.0 / (1.0 + a)};
+}
+
+}  // namespace softstep

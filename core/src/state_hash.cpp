@@ -1,0 +1,91 @@
+// A hash of the whole world, bit for bit: tests use it to prove a rejected call changed
+// nothing, and tools to compare runs for determinism from outside.
+#include <cstring>
+#include <type_traits>
+
+#include "world_impl.hpp"
+
+namespace softstep {
+
+namespace {
+
+class Fnv1a {
+ public:
+  void bytes(const void* data, std::size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) {
+      hash_ ^= p[i];
+      hash_ *= 0x100000001b3ull;
+    }
+  }
+  template <class T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes(&v, sizeof v);
+  }
+  template <class Derived>
+  void matrix(const Eigen::MatrixBase<Derived>& m) {
+    for (Eigen::Index i = 0; i < m.size(); ++i) value(m.derived().data()[i]);
+  }
+  std::uint64_t get() const { return hash_; }
+
+ private:
+  std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+std::uint64_t World::state_hash() const {
+  const Impl& w = *impl_;
+  Fnv1a h;
+  const WorldSettings& s = w.settings;
+  h.matrix(s.gravity);
+  h.value(s.substeps);
+  h.value(s.relax_iterations);
+  h.value(s.warm_start);
+  h.value(s.rigid_hertz);
+  h.value(s.rigid_damping_ratio);
+  h.value(s.max_correction_speed);
+  // Not hashed: simd and threads, which by design never change a result, so that runs at
+  // different widths and thread counts can be compared by hash.
+  h.value(w.bodies.size());
+  for (const BodySlot& b : w.bodies) {
+    h.value(b.generation);
+    h.value(b.alive);
+    if (!b.alive) continue;
+    h.value(b.type);
+    h.matrix(b.position);
+    h.matrix(b.orientation.coeffs());
+    h.matrix(b.linear_velocity);
+    h.matrix(b.angular_velocity);
+    h.value(b.mass);
+    h.matrix(b.inertia);
+    h.value(b.gravity_scale);
+    h.value(b.linear_damping);
+    h.value(b.angular_damping);
+    for (std::uint32_t j : b.joints) h.value(j);
+  }
+  h.value(w.joints.size());
+  for (std::uint32_t slot = 0; slot < w.joints.size(); ++slot) {
+    const JointSlot& j = w.joints[slot];
+    h.value(j.generation);
+    h.value(j.alive);
+    if (!j.alive) continue;
+    h.value(j.type);
+    h.value(j.body_a);
+    h.value(j.body_b);
+    h.matrix(j.local_anchor_a);
+    h.matrix(j.local_anchor_b);
+    h.value(j.spring.hertz);
+    h.value(j.spring.damping_ratio);
+    h.value(j.rest_length);
+    h.value(j.min_length);
+    h.value(j.max_length);
+    h.matrix(w.joints_packed ? w.joint_solver->impulse(slot) : j.impulse);
+  }
+  for (std::uint32_t f : w.free_bodies) h.value(f);
+  for (std::uint32_t f : w.free_joints) h.value(f);
+  return h.get();
+}
+
+}  // namespace softstep

@@ -1,0 +1,153 @@
+// One step of Soft Step (DESIGN.md, "One step"):
+//   prepare: anchors, effective masses, softness
+//   per sub-step: integrate velocities, warm start, solve (soft, biased),
+//                 integrate positions, relax (rigid, no bias)
+//   store: write the double-precision poses and velocities back
+#include <cmath>
+
+#include "validation.hpp"
+#include "world_impl.hpp"
+
+namespace softstep {
+
+namespace {
+
+simd::SubstepContext make_context(const WorldSettings& s, float h) {
+  simd::SubstepContext ctx;
+  ctx.h = h;
+  ctx.inv_h = 1.0f / h;
+  // A rigid row is a stiff spring while solving; a quarter of the sub-step rate keeps it
+  // well inside what one Gauss-Seidel pass can follow without overshoot.
+  const double hertz = std::min(s.rigid_hertz, 0.25 / static_cast<double>(h));
+  ctx.rigid = simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
+  ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
+  return ctx;
+}
+
+}  // namespace
+
+void World::Impl::prepare_bodies(float h) {
+  SolverBodies& sb = solver_bodies;
+  const std::size_t records = bodies.size() + 1;
+  if (!bodies_listed || sb.velocity.size() != records) {
+    sb.velocity.assign(records, simd::VelocityRecord{});
+    sb.delta.assign(records, simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0});
+    sb.mass.assign(records, simd::MassRecord{});
+    sb.force.assign(records, simd::ForceRecord{});
+    sb.movable.clear();
+    for (std::uint32_t s = 0; s < bodies.size(); ++s) {
+      if (bodies[s].alive && bodies[s].type != BodyType::Static) sb.movable.push_back(s);
+    }
+    bodies_listed = true;
+  }
+  for (std::uint32_t s : sb.movable) {
+    const BodySlot& b = bodies[s];
+    const std::size_t i = s + 1;
+    simd::VelocityRecord& v = sb.velocity[i];
+    for (int k = 0; k < 3; ++k) {
+      v.v[k] = static_cast<float>(b.linear_velocity[k]);
+      v.w[k] = static_cast<float>(b.angular_velocity[k]);
+    }
+    sb.delta[i] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+    simd::MassRecord& m = sb.mass[i];
+    simd::ForceRecord& f = sb.force[i];
+    if (b.type == BodyType::Dynamic) {
+      const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
+      const Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
+      m = {static_cast<float>(1.0 / b.mass),
+           {static_cast<float>(inv_i(0, 0)), static_cast<float>(inv_i(1, 1)),
+            static_cast<float>(inv_i(2, 2)), static_cast<float>(inv_i(0, 1)),
+            static_cast<float>(inv_i(0, 2)), static_cast<float>(inv_i(1, 2))},
+           0.0f};
+      const Eigen::Vector3d g = settings.gravity * b.gravity_scale;
+      f = {{static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())},
+           static_cast<float>(1.0 / (1.0 + h * b.linear_damping)),
+           static_cast<float>(1.0 / (1.0 + h * b.angular_damping)),
+           {0, 0, 0}};
+    } else {
+      m = simd::MassRecord{};
+      f = simd::ForceRecord{{0, 0, 0}, 1.0f, 1.0f, {0, 0, 0}};
+    }
+  }
+}
+
+void World::Impl::integrate_velocities(float h) {
+  SolverBodies& sb = solver_bodies;
+  for (std::uint32_t s : sb.movable) simd::integrate_velocity(sb.velocity[s + 1], sb.force[s + 1], h);
+}
+
+void World::Impl::integrate_positions(float h) {
+  SolverBodies& sb = solver_bodies;
+  for (std::uint32_t s : sb.movable) simd::integrate_position(sb.delta[s + 1], sb.velocity[s + 1], h);
+}
+
+void World::Impl::finalize_bodies() {
+  SolverBodies& sb = solver_bodies;
+  for (std::uint32_t s : sb.movable) {
+    BodySlot& b = bodies[s];
+    const simd::VelocityRecord& v = sb.velocity[s + 1];
+    const simd::DeltaRecord& d = sb.delta[s + 1];
+    b.position += Eigen::Vector3d(d.dp[0], d.dp[1], d.dp[2]);
+    const Eigen::Quaterniond dq(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
+    b.orientation = (dq * b.orientation).normalized();
+    b.linear_velocity = Eigen::Vector3d(v.v[0], v.v[1], v.v[2]);
+    b.angular_velocity = Eigen::Vector3d(v.w[0], v.w[1], v.w[2]);
+  }
+}
+
+void World::step(double dt) {
+  Impl& w = *impl_;
+  if (!(std::isfinite(dt) && dt > 0.0)) {
+    validation::reject("step", "dt", validation::format(dt), "must be finite and > 0 s");
+  }
+  const WorldSettings& s = w.settings;
+  const float h = static_cast<float>(dt / s.substeps);
+  if (!(h > 0.0f)) {
+    validation::reject("step", "dt", validation::format(dt), "dt / substeps underflows float");
+  }
+  if (!w.joints_packed) {
+    w.joint_solver->pack(w.coloring, w.joints, w.bodies);
+    w.joints_packed = true;
+  }
+  const simd::SubstepContext ctx = make_context(s, h);
+  w.prepare_bodies(h);
+  const simd::BodyArrays arrays = w.solver_bodies.arrays();
+  JointSolverBase& joints = *w.joint_solver;
+  const bool has_joints = w.joint_count > 0;
+  if (has_joints) joints.prepare(w.joints, w.bodies, arrays, ctx);
+  for (int sub = 0; sub < s.substeps; ++sub) {
+    w.integrate_velocities(h);
+    if (has_joints) {
+      if (s.warm_start) {
+        joints.warm_start(arrays);
+      } else {
+        joints.clear_impulses();
+      }
+      joints.solve(arrays, ctx);
+    }
+    w.integrate_positions(h);
+    if (has_joints) {
+      for (int r = 0; r < s.relax_iterations; ++r) joints.relax(arrays, ctx);
+    }
+  }
+  w.finalize_bodies();
+  w.last_substep = h;
+}
+
+SolverLayout World::solver_layout() const {
+  const Impl& w = *impl_;
+  const int lanes = w.joint_solver->lanes();
+  const graph_coloring::ColoringStats stats = w.coloring.stats(lanes);
+  SolverLayout layout;
+  layout.simd = w.width;
+  layout.lanes = lanes;
+  layout.colors_used = stats.colors_used;
+  for (int c = 0; c < graph_coloring::kColorCount; ++c) {
+    if (stats.per_color[c] > 0) layout.joints_per_color.push_back(stats.per_color[c]);
+  }
+  layout.overflow_joints = stats.overflow;
+  layout.lane_fill = stats.lane_fill;
+  return layout;
+}
+
+}  // namespace softstep

@@ -1,0 +1,34 @@
+// Checks for the public API. Each throws InvalidArgument naming the call, the field and the
+// value; none changes anything, so a caller that validates first leaves the world untouched.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "softstep/body.hpp"
+#include "softstep/errors.hpp"
+#include "softstep/joints.hpp"
+#include "softstep/world_settings.hpp"
+
+namespace softstep::validation {
+
+std::string format(double value);
+std::string format(const Eigen::Vector3d& value);
+
+[[noreturn]] void reject(std::string_view call, std::string_view field, const std::string& value,
+                         std::string_view rule);
+
+void finite(std::string_view call, std::string_view field, double value);
+void finite(std::string_view call, std::string_view field, const Eigen::Vector3d& value);
+void non_negative(std::string_view call, std::string_view field, double value);
+void positive(std::string_view call, std::string_view field, double value);
+// Normalizes a quaternion whose norm is within 1e-3 of 1; rejects anything else.
+Eigen::Quaterniond unit_quaternion(std::string_view call, std::string_view field,
+                                   const Eigen::Quaterniond& q);
+void dynamic_mass(std::string_view call, std::string_view field, double mass);
+void inertia_tensor(std::string_view call, std::string_view field, const Eigen::Matrix3d& inertia);
+void spring(std::string_view call, std::string_view field, const Spring& spring);
+void body_def(std::string_view call, const BodyDef& def);
+void settings(std::string_view call, const WorldSettings& settings);
+
+}  // namespace softstep::validation

@@ -1,0 +1,350 @@
+// The public World: validation first, then the change. Nothing is modified before every
+// check of a call has passed.
+#include "softstep/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "validation.hpp"
+#include "world_impl.hpp"
+
+namespace softstep {
+
+namespace {
+
+const char* type_name(BodyType t) {
+  return t == BodyType::Static ? "static" : t == BodyType::Kinematic ? "kinematic" : "dynamic";
+}
+
+SimdWidth resolve_width(std::string_view call, SimdWidth requested) {
+  if (requested == SimdWidth::Best) return best_simd_width();
+  if (!simd_width_supported(requested)) {
+    validation::reject(call, "WorldSettings.simd", simd_width_name(requested),
+                       "this CPU lacks that instruction set (or FMA, which this build uses)");
+  }
+  return requested;
+}
+
+}  // namespace
+
+// ---- lookups that reject unknown ids ------------------------------------------------------
+
+static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
+                               BodyId id) {
+  if (id.index >= w.bodies.size() || !w.bodies[id.index].alive ||
+      w.bodies[id.index].generation != id.generation) {
+    validation::reject(call, field,
+                       "BodyId{" + std::to_string(id.index) + ", gen " + std::to_string(id.generation) + "}",
+                       "no such body (never created, or destroyed)");
+  }
+  return id.index;
+}
+
+static std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id) {
+  if (id.index >= w.joints.size() || !w.joints[id.index].alive ||
+      w.joints[id.index].generation != id.generation) {
+    validation::reject(call, "joint",
+                       "JointId{" + std::to_string(id.index) + ", gen " + std::to_string(id.generation) + "}",
+                       "no such joint (never created, or destroyed)");
+  }
+  return id.index;
+}
+
+// ---- Impl helpers -------------------------------------------------------------------------
+
+void World::Impl::unpack_joints() {
+  if (joints_packed && joint_solver) joint_solver->save_impulses(joints);
+  joints_packed = false;
+}
+
+// ---- construction and settings ------------------------------------------------------------
+
+World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
+  validation::settings("World", settings);
+  impl_->width = resolve_width("World", settings.simd);
+  impl_->settings = settings;
+  impl_->joint_solver = make_joint_solver(impl_->width);
+}
+
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+const WorldSettings& World::settings() const { return impl_->settings; }
+
+void World::set_settings(const WorldSettings& settings) {
+  validation::settings("set_settings", settings);
+  const SimdWidth width = resolve_width("set_settings", settings.simd);
+  Impl& w = *impl_;
+  if (width != w.width) {
+    w.unpack_joints();
+    w.joint_solver = make_joint_solver(width);
+    w.width = width;
+  }
+  w.settings = settings;
+}
+
+// ---- bodies -------------------------------------------------------------------------------
+
+BodyId World::create_body(const BodyDef& def) {
+  validation::body_def("create_body", def);
+  Impl& w = *impl_;
+  std::uint32_t slot;
+  if (!w.free_bodies.empty()) {
+    slot = w.free_bodies.back();
+    w.free_bodies.pop_back();
+  } else {
+    slot = static_cast<std::uint32_t>(w.bodies.size());
+    w.bodies.emplace_back();
+  }
+  BodySlot& b = w.bodies[slot];
+  b.alive = true;
+  b.type = def.type;
+  b.position = def.position;
+  b.orientation = def.orientation.normalized();
+  b.linear_velocity = def.linear_velocity;
+  b.angular_velocity = def.angular_velocity;
+  const bool dynamic = def.type == BodyType::Dynamic;
+  b.mass = dynamic ? def.mass : 0.0;
+  b.inertia = dynamic ? def.inertia : Eigen::Matrix3d::Zero();
+  b.inverse_inertia = dynamic ? Eigen::Matrix3d(def.inertia.inverse()) : Eigen::Matrix3d::Zero();
+  b.gravity_scale = def.gravity_scale;
+  b.linear_damping = def.linear_damping;
+  b.angular_damping = def.angular_damping;
+  b.joints.clear();
+  ++w.body_count;
+  w.bodies_listed = false;
+  return {slot, b.generation};
+}
+
+void World::destroy_body(BodyId id) {
+  Impl& w = *impl_;
+  const std::uint32_t slot = body_slot(w, "destroy_body", "body", id);
+  const std::vector<std::uint32_t> attached = w.bodies[slot].joints;
+  for (std::uint32_t j : attached) destroy_joint({j, w.joints[j].generation});
+  BodySlot& b = w.bodies[slot];
+  b.alive = false;
+  ++b.generation;
+  b.joints.clear();
+  w.free_bodies.push_back(slot);
+  --w.body_count;
+  w.bodies_listed = false;
+}
+
+bool World::is_valid(BodyId id) const {
+  const Impl& w = *impl_;
+  return id.index < w.bodies.size() && w.bodies[id.index].alive &&
+         w.bodies[id.index].generation == id.generation;
+}
+
+BodyState World::body(BodyId id) const {
+  const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
+  return {b.type,           b.position,      b.orientation,   b.linear_velocity,
+          b.angular_velocity, b.mass,        b.inertia,       b.gravity_scale,
+          b.linear_damping, b.angular_damping};
+}
+
+void World::set_position(BodyId id, const Eigen::Vector3d& position) {
+  const std::uint32_t slot = body_slot(*impl_, "set_position", "body", id);
+  validation::finite("set_position", "position", position);
+  impl_->bodies[slot].position = position;
+}
+
+void World::set_orientation(BodyId id, const Eigen::Quaterniond& orientation) {
+  const std::uint32_t slot = body_slot(*impl_, "set_orientation", "body", id);
+  const Eigen::Quaterniond q = validation::unit_quaternion("set_orientation", "orientation", orientation);
+  impl_->bodies[slot].orientation = q;
+}
+
+void World::set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity) {
+  const std::uint32_t slot = body_slot(*impl_, "set_linear_velocity", "body", id);
+  validation::finite("set_linear_velocity", "velocity", velocity);
+  if (impl_->bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
+    validation::reject("set_linear_velocity", "velocity", validation::format(velocity),
+                       "a static body cannot move (use a kinematic body)");
+  }
+  impl_->bodies[slot].linear_velocity = velocity;
+}
+
+void World::set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity) {
+  const std::uint32_t slot = body_slot(*impl_, "set_angular_velocity", "body", id);
+  validation::finite("set_angular_velocity", "velocity", velocity);
+  if (impl_->bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
+    validation::reject("set_angular_velocity", "velocity", validation::format(velocity),
+                       "a static body cannot move (use a kinematic body)");
+  }
+  impl_->bodies[slot].angular_velocity = velocity;
+}
+
+void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia) {
+  const std::uint32_t slot = body_slot(*impl_, "set_mass_properties", "body", id);
+  BodySlot& b = impl_->bodies[slot];
+  if (b.type != BodyType::Dynamic) {
+    validation::reject("set_mass_properties", "body", type_name(b.type),
+                       "only a dynamic body has mass properties");
+  }
+  validation::dynamic_mass("set_mass_properties", "mass", mass);
+  validation::inertia_tensor("set_mass_properties", "inertia", inertia);
+  b.mass = mass;
+  b.inertia = inertia;
+  b.inverse_inertia = inertia.inverse();
+}
+
+std::size_t World::body_count() const { return impl_->body_count; }
+
+Eigen::Vector3d World::local_point(BodyId id, const Eigen::Vector3d& world_point) const {
+  const BodySlot& b = impl_->bodies[body_slot(*impl_, "local_point", "body", id)];
+  validation::finite("local_point", "world_point", world_point);
+  return b.orientation.conjugate() * (world_point - b.position);
+}
+
+// ---- joints -------------------------------------------------------------------------------
+
+namespace {
+
+struct JointEnds {
+  std::uint32_t a, b;
+};
+
+JointEnds check_joint_ends(const World::Impl& w, std::string_view call, BodyId a, BodyId b,
+                           const Eigen::Vector3d& anchor_a, const Eigen::Vector3d& anchor_b,
+                           const Spring& spring, std::string_view def) {
+  const std::string prefix(def);
+  const std::uint32_t slot_a = body_slot(w, call, prefix + ".body_a", a);
+  const std::uint32_t slot_b = body_slot(w, call, prefix + ".body_b", b);
+  if (slot_a == slot_b) {
+    validation::reject(call, prefix + ".body_b", "BodyId{" + std::to_string(b.index) + "}",
+                       "a joint needs two different bodies (body_a is the same body)");
+  }
+  validation::finite(call, prefix + ".local_anchor_a", anchor_a);
+  validation::finite(call, prefix + ".local_anchor_b", anchor_b);
+  validation::spring(call, prefix + ".spring", spring);
+  return {slot_a, slot_b};
+}
+
+}  // namespace
+
+static JointId add_joint(World::Impl& w, JointSlot&& joint) {
+  std::uint32_t slot;
+  if (!w.free_joints.empty()) {
+    slot = w.free_joints.back();
+    w.free_joints.pop_back();
+  } else {
+    slot = static_cast<std::uint32_t>(w.joints.size());
+    w.joints.emplace_back();
+  }
+  w.unpack_joints();
+  joint.generation = w.joints[slot].generation;
+  joint.alive = true;
+  joint.impulse.setZero();
+  w.joints[slot] = std::move(joint);
+  const JointSlot& j = w.joints[slot];
+  w.bodies[j.body_a].joints.push_back(slot);
+  w.bodies[j.body_b].joints.push_back(slot);
+  // Only dynamic bodies are written by the solver, so only they block a colour.
+  const auto blocking = [&](std::uint32_t body) {
+    return w.bodies[body].type == BodyType::Dynamic ? body : graph_coloring::kNonBlocking;
+  };
+  w.coloring.add(slot, blocking(j.body_a), blocking(j.body_b));
+  ++w.joint_count;
+  return {slot, j.generation};
+}
+
+JointId World::create_ball_joint(const BallJointDef& def) {
+  Impl& w = *impl_;
+  const JointEnds ends = check_joint_ends(w, "create_ball_joint", def.body_a, def.body_b,
+                                          def.local_anchor_a, def.local_anchor_b, def.spring,
+                                          "BallJointDef");
+  JointSlot j;
+  j.type = JointType::Ball;
+  j.body_a = ends.a;
+  j.body_b = ends.b;
+  j.local_anchor_a = def.local_anchor_a;
+  j.local_anchor_b = def.local_anchor_b;
+  j.spring = def.spring;
+  return add_joint(w, std::move(j));
+}
+
+JointId World::create_distance_joint(const DistanceJointDef& def) {
+  Impl& w = *impl_;
+  const char* call = "create_distance_joint";
+  const JointEnds ends = check_joint_ends(w, call, def.body_a, def.body_b, def.local_anchor_a,
+                                          def.local_anchor_b, def.spring, "DistanceJointDef");
+  validation::non_negative(call, "DistanceJointDef.rest_length", def.rest_length);
+  validation::non_negative(call, "DistanceJointDef.min_length", def.min_length);
+  if (std::isnan(def.max_length) || def.max_length < def.min_length) {
+    validation::reject(call, "DistanceJointDef.max_length", validation::format(def.max_length),
+                       "must be >= min_length (" + validation::format(def.min_length) +
+                           "); +infinity for no upper limit");
+  }
+  JointSlot j;
+  j.type = JointType::Distance;
+  j.body_a = ends.a;
+  j.body_b = ends.b;
+  j.local_anchor_a = def.local_anchor_a;
+  j.local_anchor_b = def.local_anchor_b;
+  j.spring = def.spring;
+  j.min_length = def.min_length;
+  j.max_length = def.max_length;
+  j.rest_length = std::clamp(def.rest_length, def.min_length, def.max_length);
+  return add_joint(w, std::move(j));
+}
+
+void World::destroy_joint(JointId id) {
+  Impl& w = *impl_;
+  const std::uint32_t slot = joint_slot(w, "destroy_joint", id);
+  w.unpack_joints();
+  JointSlot& j = w.joints[slot];
+  for (std::uint32_t body : {j.body_a, j.body_b}) {
+    auto& list = w.bodies[body].joints;
+    list.erase(std::find(list.begin(), list.end(), slot));
+  }
+  w.coloring.remove(slot);
+  j.alive = false;
+  ++j.generation;
+  j.impulse.setZero();
+  w.free_joints.push_back(slot);
+  --w.joint_count;
+}
+
+bool World::is_valid(JointId id) const {
+  const Impl& w = *impl_;
+  return id.index < w.joints.size() && w.joints[id.index].alive &&
+         w.joints[id.index].generation == id.generation;
+}
+
+JointType World::joint_type(JointId id) const {
+  return impl_->joints[joint_slot(*impl_, "joint_type", id)].type;
+}
+
+std::size_t World::joint_count() const { return impl_->joint_count; }
+
+JointReading World::joint_reading(JointId id) const {
+  const Impl& w = *impl_;
+  const JointSlot& j = w.joints[joint_slot(w, "joint_reading", id)];
+  const BodySlot& a = w.bodies[j.body_a];
+  const BodySlot& b = w.bodies[j.body_b];
+  const Eigen::Vector3d anchor_a = a.position + a.orientation * j.local_anchor_a;
+  const Eigen::Vector3d anchor_b = b.position + b.orientation * j.local_anchor_b;
+  const Eigen::Vector3d d = anchor_b - anchor_a;
+  const Eigen::Vector3f stored = w.joints_packed ? w.joint_solver->impulse(id.index) : j.impulse;
+  JointReading r;
+  if (j.type == JointType::Ball) {
+    r.impulse = stored.cast<double>();
+    r.error = d.norm();
+  } else {
+    const double length = d.norm();
+    const Eigen::Vector3d n = length > 1e-9 ? Eigen::Vector3d(d / length) : Eigen::Vector3d::Zero();
+    r.impulse = double(stored.x() + stored.y() - stored.z()) * n;
+    if (j.spring.is_free()) {
+      r.error = std::max({0.0, j.min_length - length, length - j.max_length});
+    } else {
+      r.error = std::abs(length - j.rest_length);
+    }
+  }
+  r.force = w.last_substep > 0.0 ? Eigen::Vector3d(r.impulse / w.last_substep) : Eigen::Vector3d::Zero();
+  return r;
+}
+
+}  // namespace softstep

@@ -1,0 +1,111 @@
+// The world's storage. Cold records (what a body or joint *is*) live in slots addressed by
+// id; the solver's hot state (body records, joint lanes) is rebuilt from them.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "softstep/graph_coloring/graph_coloring.hpp"
+#include "softstep/simd/body_integration.hpp"
+#include "softstep/simd/step_context.hpp"
+#include "softstep/world.hpp"
+
+namespace softstep {
+
+struct BodySlot {
+  std::uint32_t generation = 0;
+  bool alive = false;
+  BodyType type = BodyType::Dynamic;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
+  double mass = 0.0;
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Zero();  // body frame; 0 unless dynamic
+  double gravity_scale = 1.0;
+  double linear_damping = 0.0;
+  double angular_damping = 0.0;
+  std::vector<std::uint32_t> joints;  // slots of the joints attached to this body
+};
+
+struct JointSlot {
+  std::uint32_t generation = 0;
+  bool alive = false;
+  JointType type = JointType::Ball;
+  std::uint32_t body_a = 0;  // body slots
+  std::uint32_t body_b = 0;
+  Eigen::Vector3d local_anchor_a = Eigen::Vector3d::Zero();
+  Eigen::Vector3d local_anchor_b = Eigen::Vector3d::Zero();
+  Spring spring;
+  double rest_length = 0.0;  // distance joints: clamped into [min, max]
+  double min_length = 0.0;
+  double max_length = 0.0;
+  // Accumulated impulses kept here while the joint is not in the solver's lanes (between a
+  // topology change and the next pack). Ball: xyz. Distance: x = spring/rod, y = lower, z = upper.
+  Eigen::Vector3f impulse = Eigen::Vector3f::Zero();
+};
+
+// The solver's body index: 0 is the static dummy; a movable body in slot s is s + 1.
+inline std::int32_t solver_index(const BodySlot& body, std::uint32_t slot) {
+  return body.type == BodyType::Static ? simd::kDummyBody : static_cast<std::int32_t>(slot) + 1;
+}
+
+struct SolverBodies {
+  std::vector<simd::VelocityRecord> velocity;
+  std::vector<simd::DeltaRecord> delta;
+  std::vector<simd::MassRecord> mass;
+  std::vector<simd::ForceRecord> force;
+  std::vector<std::uint32_t> movable;  // slots of dynamic and kinematic bodies, in slot order
+  simd::BodyArrays arrays() { return {velocity.data(), delta.data(), mass.data()}; }
+};
+
+// The joints of one lane width in coloured batches; see joint_solver.hpp.
+class JointSolverBase {
+ public:
+  virtual ~JointSolverBase() = default;
+  virtual int lanes() const = 0;
+  // Lays out all joints from the colouring; impulses come from the slots.
+  virtual void pack(const graph_coloring::GraphColoring& coloring, const std::vector<JointSlot>& joints,
+                    const std::vector<BodySlot>& bodies) = 0;
+  // Copies the lanes' impulses back into the slots (before a re-pack).
+  virtual void save_impulses(std::vector<JointSlot>& joints) const = 0;
+  virtual Eigen::Vector3f impulse(std::uint32_t joint_slot) const = 0;
+  virtual void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+                       const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
+  virtual void warm_start(const simd::BodyArrays& arrays) = 0;
+  virtual void clear_impulses() = 0;
+  virtual void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
+  virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
+};
+
+std::unique_ptr<JointSolverBase> make_joint_solver(SimdWidth width);
+SimdWidth best_simd_width();
+bool simd_width_supported(SimdWidth width);
+const char* simd_width_name(SimdWidth width);
+
+struct World::Impl {
+  WorldSettings settings;
+  std::vector<BodySlot> bodies;
+  std::vector<std::uint32_t> free_bodies;  // slots to reuse, last freed first
+  std::vector<JointSlot> joints;
+  std::vector<std::uint32_t> free_joints;
+  std::size_t body_count = 0;
+  std::size_t joint_count = 0;
+
+  graph_coloring::GraphColoring coloring;
+  SimdWidth width = SimdWidth::Scalar;  // resolved, never Best
+  std::unique_ptr<JointSolverBase> joint_solver;
+  bool joints_packed = false;  // false after any joint change: re-pack before the next step
+  bool bodies_listed = false;  // false after any body change: rebuild the movable list
+  SolverBodies solver_bodies;
+  double last_substep = 0.0;  // s, of the last step (for joint forces)
+
+  void unpack_joints();  // save impulses to slots and mark for re-pack
+  void prepare_bodies(float h);
+  void finalize_bodies();
+  void integrate_velocities(float h);
+  void integrate_positions(float h);
+};
+
+}  // namespace softstep

@@ -1,0 +1,133 @@
+// Lane types: the scalar lane `float` and xsimd batches share one small vocabulary, so a
+// kernel written once as a template over L runs at any width with the same arithmetic.
+//
+// Why our own overloads and not xsimd's: xsimd 8.1 lacks several of these for plain float
+// (select(bool,..), fnma), and its rsqrt/reciprocal are approximations that would make the
+// widths disagree. Every operation here is correctly rounded in every width, and fusion is
+// decided once for the whole build (SOFTSTEP_USE_FMA), so scalar and wide results agree bit
+// for bit.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <xsimd/xsimd.hpp>
+#if SOFTSTEP_USE_FMA
+#include <immintrin.h>
+#endif
+
+#ifndef SOFTSTEP_USE_FMA
+#define SOFTSTEP_USE_FMA 0
+#endif
+
+namespace softstep::simd {
+
+template <class L>
+struct LaneTraits;
+
+template <>
+struct LaneTraits<float> {
+  static constexpr int width = 1;
+  using Mask = bool;
+};
+
+template <class Arch>
+struct LaneTraits<xsimd::batch<float, Arch>> {
+  static constexpr int width = static_cast<int>(xsimd::batch<float, Arch>::size);
+  using Mask = xsimd::batch_bool<float, Arch>;
+};
+
+template <class L>
+inline constexpr int kWidth = LaneTraits<L>::width;
+
+template <class L>
+using MaskOf = typename LaneTraits<L>::Mask;
+
+// ---- scalar lane -------------------------------------------------------------------------
+
+inline void store_lanes(float* p, float v) { *p = v; }
+inline float fmadd(float a, float b, float c) {
+#if SOFTSTEP_USE_FMA
+  return std::fma(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+inline float select(bool m, float a, float b) { return m ? a : b; }
+inline float min_lanes(float a, float b) { return a < b ? a : b; }
+inline float max_lanes(float a, float b) { return a > b ? a : b; }
+inline float sqrt_lanes(float a) { return std::sqrt(a); }
+inline float abs_lanes(float a) { return std::fabs(a); }
+inline float lane(float v, int) { return v; }
+
+// ---- batch lanes -------------------------------------------------------------------------
+
+template <class A>
+inline void store_lanes(float* p, const xsimd::batch<float, A>& v) {
+  v.store_aligned(p);
+}
+// With SOFTSTEP_USE_FMA the fused instruction is called directly: xsimd 8.1 offers 4-wide
+// FMA only as fma3<sse4_2>, which it disables whenever AVX is on (and gcc's -mfma implies
+// AVX), and its plain avx2 arch splits fma into a multiply and an add.
+template <class A>
+inline xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a, const xsimd::batch<float, A>& b,
+                                    const xsimd::batch<float, A>& c) {
+#if SOFTSTEP_USE_FMA
+  if constexpr (xsimd::batch<float, A>::size == 8) {
+    return _mm256_fmadd_ps(a, b, c);
+  } else {
+    static_assert(xsimd::batch<float, A>::size == 4);
+    return _mm_fmadd_ps(a, b, c);
+  }
+#else
+  return a * b + c;
+#endif
+}
+template <class A>
+inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
+                                     const xsimd::batch<float, A>& a,
+                                     const xsimd::batch<float, A>& b) {
+  return xsimd::select(m, a, b);
+}
+// min/max are written as selects so that the NaN and signed-zero behaviour is exactly the
+// scalar `a < b ? a : b` in every width (minps and std::min differ on NaN operands).
+template <class A>
+inline xsimd::batch<float, A> min_lanes(const xsimd::batch<float, A>& a,
+                                        const xsimd::batch<float, A>& b) {
+  return xsimd::select(a < b, a, b);
+}
+template <class A>
+inline xsimd::batch<float, A> max_lanes(const xsimd::batch<float, A>& a,
+                                        const xsimd::batch<float, A>& b) {
+  return xsimd::select(a > b, a, b);
+}
+template <class A>
+inline xsimd::batch<float, A> sqrt_lanes(const xsimd::batch<float, A>& a) {
+  return xsimd::sqrt(a);
+}
+template <class A>
+inline xsimd::batch<float, A> abs_lanes(const xsimd::batch<float, A>& a) {
+  return xsimd::abs(a);
+}
+template <class A>
+inline float lane(const xsimd::batch<float, A>& v, int i) {
+  alignas(64) float tmp[xsimd::batch<float, A>::size];
+  v.store_aligned(tmp);
+  return tmp[i];
+}
+
+// Generic load: `load<L>(p)` reads kWidth<L> consecutive, aligned floats.
+template <class L>
+inline L load(const float* p) {
+  if constexpr (std::is_same_v<L, float>) {
+    return *p;
+  } else {
+    return L::load_aligned(p);
+  }
+}
+
+template <class L>
+inline L fnmadd(const L& a, const L& b, const L& c) {  // c - a*b
+  return fmadd(L(0.0f) - a, b, c);
+}
+
+}  // namespace softstep::simd

@@ -1,0 +1,131 @@
+// Vec3, symmetric Mat3 and Quat whose components are lanes: one instance holds W vectors.
+// Each formula is written once; `float` gives the scalar solver, batches the wide ones.
+#pragma once
+
+#include "softstep/simd/lanes.hpp"
+
+namespace softstep::simd {
+
+template <class L>
+struct Vec3 {
+  L x, y, z;
+};
+
+template <class L>
+inline Vec3<L> operator+(const Vec3<L>& a, const Vec3<L>& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class L>
+inline Vec3<L> operator-(const Vec3<L>& a, const Vec3<L>& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class L>
+inline Vec3<L> operator-(const Vec3<L>& a) {
+  return {L(0.0f) - a.x, L(0.0f) - a.y, L(0.0f) - a.z};
+}
+template <class L>
+inline Vec3<L> operator*(const L& s, const Vec3<L>& a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+// a + s * b, fused per component
+template <class L>
+inline Vec3<L> mul_add(const L& s, const Vec3<L>& b, const Vec3<L>& a) {
+  return {fmadd(s, b.x, a.x), fmadd(s, b.y, a.y), fmadd(s, b.z, a.z)};
+}
+template <class L>
+inline L dot(const Vec3<L>& a, const Vec3<L>& b) {
+  return fmadd(a.x, b.x, fmadd(a.y, b.y, a.z * b.z));
+}
+template <class L>
+inline Vec3<L> cross(const Vec3<L>& a, const Vec3<L>& b) {
+  return {fmadd(a.y, b.z, L(0.0f) - a.z * b.y), fmadd(a.z, b.x, L(0.0f) - a.x * b.z),
+          fmadd(a.x, b.y, L(0.0f) - a.y * b.x)};
+}
+template <class L>
+inline Vec3<L> broadcast3(float x, float y, float z) {
+  return {L(x), L(y), L(z)};
+}
+
+// Symmetric 3x3 matrix: inverse inertia tensors and the 3x3 effective-mass matrix K of a
+// ball joint are symmetric, so six lanes hold them.
+template <class L>
+struct Mat3Sym {
+  L xx, yy, zz, xy, xz, yz;
+};
+
+template <class L>
+inline Vec3<L> operator*(const Mat3Sym<L>& m, const Vec3<L>& v) {
+  return {fmadd(m.xx, v.x, fmadd(m.xy, v.y, m.xz * v.z)),
+          fmadd(m.xy, v.x, fmadd(m.yy, v.y, m.yz * v.z)),
+          fmadd(m.xz, v.x, fmadd(m.yz, v.y, m.zz * v.z))};
+}
+template <class L>
+inline Mat3Sym<L> operator+(const Mat3Sym<L>& a, const Mat3Sym<L>& b) {
+  return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.xz + b.xz, a.yz + b.yz};
+}
+
+// skew(r)^T * I * skew(r) for symmetric I: the rotational part r x (I (r x .)) that a
+// point impulse at offset r adds to the effective-mass matrix K = J M^-1 J^T.
+template <class L>
+inline Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const Vec3<L>& r) {
+  // With S = skew(r) (S p = r x p), the anchor velocity an impulse p causes through rotation
+  // is -r x I (r x p) = S^T I S p. Entry (i, j) is (S e_i) . I (S e_j): symmetric by
+  // construction, so only six dot products are formed.
+  const Vec3<L> c0 = inv_i * Vec3<L>{L(0.0f), r.z, L(0.0f) - r.y};        // I * (S e_x)
+  const Vec3<L> c1 = inv_i * Vec3<L>{L(0.0f) - r.z, L(0.0f), r.x};        // I * (S e_y)
+  const Vec3<L> c2 = inv_i * Vec3<L>{r.y, L(0.0f) - r.x, L(0.0f)};        // I * (S e_z)
+  // (S^T A)_ij = (S e_i) . (A e_j) with S e_x = (0, z, -y), S e_y = (-z, 0, x), S e_z = (y, -x, 0)
+  const Vec3<L> s0{L(0.0f), r.z, L(0.0f) - r.y};
+  const Vec3<L> s1{L(0.0f) - r.z, L(0.0f), r.x};
+  const Vec3<L> s2{r.y, L(0.0f) - r.x, L(0.0f)};
+  return {dot(s0, c0), dot(s1, c1), dot(s2, c2), dot(s0, c1), dot(s0, c2), dot(s1, c2)};
+}
+
+// Inverse of a symmetric matrix by cofactors. A singular or non-finite matrix (a constraint
+// between two bodies that cannot move, or a padding lane) yields zero, so the constraint
+// applies no impulse instead of a NaN.
+template <class L>
+inline Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& m) {
+  const L c_xx = fmadd(m.yy, m.zz, L(0.0f) - m.yz * m.yz);
+  const L c_xy = fmadd(m.xz, m.yz, L(0.0f) - m.xy * m.zz);
+  const L c_xz = fmadd(m.xy, m.yz, L(0.0f) - m.xz * m.yy);
+  const L det = fmadd(m.xx, c_xx, fmadd(m.xy, c_xy, m.xz * c_xz));
+  const auto ok = det > L(0.0f);
+  const L inv_det = select(ok, L(1.0f) / select(ok, det, L(1.0f)), L(0.0f));
+  const L c_yy = fmadd(m.xx, m.zz, L(0.0f) - m.xz * m.xz);
+  const L c_yz = fmadd(m.xy, m.xz, L(0.0f) - m.xx * m.yz);
+  const L c_zz = fmadd(m.xx, m.yy, L(0.0f) - m.xy * m.xy);
+  return {c_xx * inv_det, c_yy * inv_det, c_zz * inv_det,
+          c_xy * inv_det, c_xz * inv_det, c_yz * inv_det};
+}
+
+// Unit quaternion (x, y, z, w).
+template <class L>
+struct Quat {
+  L x, y, z, w;
+};
+
+// q * v * q^-1, as v + 2w (u x v) + 2 u x (u x v) with u = (x, y, z).
+template <class L>
+inline Vec3<L> rotate(const Quat<L>& q, const Vec3<L>& v) {
+  const Vec3<L> u{q.x, q.y, q.z};
+  const Vec3<L> t = L(2.0f) * cross(u, v);
+  return mul_add(q.w, t, v + cross(u, t));
+}
+
+// Advance a rotation by angular velocity w (world frame) over h: q += h/2 (w,0) * q, then
+// renormalize. First order, like the position update of semi-implicit Euler.
+template <class L>
+inline Quat<L> integrate_rotation(const Quat<L>& q, const Vec3<L>& w, const L& h) {
+  const L hh = L(0.5f) * h;
+  const Vec3<L> a{hh * w.x, hh * w.y, hh * w.z};
+  Quat<L> r{fmadd(a.x, q.w, fmadd(a.y, q.z, fmadd(L(0.0f) - a.z, q.y, q.x))),
+            fmadd(a.y, q.w, fmadd(a.z, q.x, fmadd(L(0.0f) - a.x, q.z, q.y))),
+            fmadd(a.z, q.w, fmadd(a.x, q.y, fmadd(L(0.0f) - a.y, q.x, q.z))),
+            fmadd(L(0.0f) - a.x, q.x, fmadd(L(0.0f) - a.y, q.y, fmadd(L(0.0f) - a.z, q.z, q.w)))};
+  const L len2 = fmadd(r.x, r.x, fmadd(r.y, r.y, fmadd(r.z, r.z, r.w * r.w)));
+  const L inv_len = L(1.0f) / sqrt_lanes(len2);
+  return {r.x * inv_len, r.y * inv_len, r.z * inv_len, r.w * inv_len};
+}
+
+}  // namespace softstep::simd

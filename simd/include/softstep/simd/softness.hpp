@@ -1,0 +1,39 @@
+// Softness coefficients of a row for one sub-step h, from the talk (slides 2:3:2, 3:3):
+//   omega = 2 pi hertz,  k = m_eff omega^2,  c = 2 m_eff zeta omega
+//   gamma = 1/(c + h k),  beta = h k/(c + h k)
+// written in the sequential-impulse form that needs no m_eff (it cancels):
+//   a = h omega (2 zeta + h omega)
+//   bias_rate = omega / (2 zeta + h omega)   (= beta / h)
+//   mass_scale = a / (1 + a),  impulse_scale = 1 / (1 + a)
+//   dP = -mass_scale * m_eff * (J v + bias_rate * C) - impulse_scale * P
+#pragma once
+
+#include <numbers>
+
+#include "softstep/simd/lanes.hpp"
+
+namespace softstep::simd {
+
+template <class L>
+struct Softness {
+  L bias_rate;      // 1/s: fraction of the position error removed per second
+  L mass_scale;     // in [0, 1): how much of the rigid impulse is applied
+  L impulse_scale;  // in (0, 1]: how much of the accumulated impulse is given back
+};
+
+// hertz > 0 and zeta >= 0 are the caller's promise (validated at the API). hertz == 0 is a
+// spring with no stiffness: the row applies nothing.
+template <class L>
+inline Softness<L> make_softness(const L& hertz, const L& zeta, float h) {
+  const L omega = L(2.0f * std::numbers::pi_v<float>) * hertz;
+  const L hl(h);
+  const L denom = fmadd(hl, omega, L(2.0f) * zeta);  // 2 zeta + h omega
+  const auto active = hertz > L(0.0f);
+  const L safe_denom = select(active, denom, L(1.0f));
+  const L a = hl * omega * safe_denom;
+  const L inv_one_plus_a = L(1.0f) / (L(1.0f) + a);
+  return {select(active, omega / safe_denom, L(0.0f)), select(active, a * inv_one_plus_a, L(0.0f)),
+          select(active, inv_one_plus_a, L(0.0f))};
+}
+
+}  // namespace softstep::simd

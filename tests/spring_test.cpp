@@ -1,0 +1,103 @@
+// Conversions between the ways a spring is given: frequency and damping ratio, stiffness
+// and damping, ODE's ERP and CFM, and the solver coefficients (talk 2:3:2, 3:3).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "softstep/simd/softness.hpp"
+#include "softstep/softstep.hpp"
+
+namespace softstep {
+namespace {
+
+TEST(Spring, HertzZetaToStiffnessAndBackRoundTrips) {
+  for (double hertz : {0.1, 1.0, 30.0, 1000.0}) {
+    for (double zeta : {0.0, 0.3, 1.0, 7.0}) {
+      for (double m : {1e-3, 1.0, 1e3}) {
+        const Spring s = Spring::soft(hertz, zeta);
+        const double k = s.stiffness(m);
+        const double c = s.damping(m);
+        EXPECT_NEAR(k, m * std::pow(2.0 * std::numbers::pi * hertz, 2), 1e-12 * k);
+        const Spring back = Spring::from_stiffness(k, c, m);
+        EXPECT_NEAR(back.hertz, hertz, 1e-12 * hertz);
+        EXPECT_NEAR(back.damping_ratio, zeta, 1e-12 * (1.0 + zeta));
+      }
+    }
+  }
+}
+
+TEST(Spring, CoefficientsAreTheTalksGammaAndBeta) {
+  const double m = 2.0, h = 1.0 / 120.0;
+  const Spring s = Spring::soft(5.0, 0.4);
+  const double k = s.stiffness(m), c = s.damping(m);
+  const SoftCoefficients co = s.coefficients(m, h);
+  EXPECT_DOUBLE_EQ(co.gamma, 1.0 / (c + h * k));
+  EXPECT_DOUBLE_EQ(co.beta, h * k / (c + h * k));
+  EXPECT_NEAR(co.bias_rate, co.beta / h, 1e-12 * co.bias_rate);
+  // Sequential-impulse form: mass_scale * m_eff is the soft effective mass 1/(1/m + gamma/h),
+  // and impulse_scale = 1 - mass_scale (DESIGN.md "The math in one place").
+  EXPECT_NEAR(co.mass_scale * m, 1.0 / (1.0 / m + co.gamma / h), 1e-12);
+  EXPECT_NEAR(co.impulse_scale, 1.0 - co.mass_scale, 1e-15);
+}
+
+TEST(Spring, ErpCfmRoundTrip) {
+  const double m = 0.7, h = 1.0 / 60.0;
+  for (double hertz : {0.5, 4.0, 25.0}) {
+    for (double zeta : {0.0, 0.5, 2.0}) {
+      const Spring s = Spring::soft(hertz, zeta);
+      const SoftCoefficients co = s.coefficients(m, h);
+      const Spring back = Spring::from_erp_cfm(co.beta, co.gamma, m, h);  // ERP = beta, CFM = gamma
+      EXPECT_NEAR(back.hertz, hertz, 1e-9 * hertz);
+      EXPECT_NEAR(back.damping_ratio, zeta, 1e-9 * (1.0 + zeta));
+    }
+  }
+}
+
+TEST(Spring, StiffnessToInfinityGivesRigid) {
+  const double m = 1.0, h = 1.0 / 60.0, c = 1.0;
+  double previous_gamma = std::numeric_limits<double>::infinity();
+  for (double k = 1e2; k <= 1e16; k *= 100.0) {
+    const SoftCoefficients co = Spring::from_stiffness(k, c, m).coefficients(m, h);
+    EXPECT_LT(co.gamma, previous_gamma);
+    previous_gamma = co.gamma;
+    if (k >= 1e16) {
+      EXPECT_LT(co.gamma, 1e-14);
+      EXPECT_NEAR(co.beta, 1.0, 1e-12);
+    }
+  }
+  const SoftCoefficients rigid = Spring::rigid().coefficients(m, h);
+  EXPECT_EQ(rigid.gamma, 0.0);
+  EXPECT_EQ(rigid.beta, 1.0);
+}
+
+TEST(Spring, DesignerFormIsFramesAndOscillation) {
+  const Spring none = Spring::designer(6.0, Oscillation::None);
+  EXPECT_DOUBLE_EQ(none.hertz, 10.0);
+  EXPECT_DOUBLE_EQ(none.damping_ratio, 1.0);
+  EXPECT_DOUBLE_EQ(Spring::designer(3.0, Oscillation::Free, 30.0).hertz, 10.0);
+  EXPECT_DOUBLE_EQ(Spring::designer(3.0, Oscillation::Free).damping_ratio, 0.0);
+  const double some = Spring::designer(3.0, Oscillation::Some).damping_ratio;
+  EXPECT_GT(some, 0.0);
+  EXPECT_LT(some, 1.0);
+}
+
+// The kernels' float softness is the same formula as the API's double one.
+TEST(Spring, KernelSoftnessMatchesApiCoefficients) {
+  for (double hertz : {0.2, 3.0, 60.0, 5000.0}) {
+    for (double zeta : {0.0, 0.7, 10.0}) {
+      const float h = 1.0f / 240.0f;
+      const auto k = simd::make_softness(static_cast<float>(hertz), static_cast<float>(zeta), h);
+      const SoftCoefficients co = Spring::soft(hertz, zeta).coefficients(1.0, h);
+      EXPECT_NEAR(k.bias_rate, co.bias_rate, 1e-5 * co.bias_rate);
+      EXPECT_NEAR(k.mass_scale, co.mass_scale, 1e-6);
+      EXPECT_NEAR(k.impulse_scale, co.impulse_scale, 1e-6);
+    }
+  }
+  const auto free = simd::make_softness(0.0f, 0.0f, 0.01f);
+  EXPECT_EQ(free.mass_scale, 0.0f);
+  EXPECT_EQ(free.bias_rate, 0.0f);
+}
+
+}  // namespace
+}  // namespace softstep

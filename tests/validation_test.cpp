@@ -1,0 +1,250 @@
+// Every bad input is rejected with an error that names the field and the value, and the
+// world is left exactly as it was (its full-state hash does not change).
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <limits>
+
+#include "softstep/softstep.hpp"
+
+namespace softstep {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Fixture {
+  World world;
+  BodyId ground, a, b, destroyed_body;
+  JointId joint, destroyed_joint;
+};
+
+Fixture make_world() {
+  Fixture f{World(), {}, {}, {}, {}, {}, {}};
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  f.ground = f.world.create_body(ground);
+  BodyDef body;
+  body.position = {1.0, 0.0, 0.0};
+  f.a = f.world.create_body(body);
+  body.position = {2.0, 0.0, 0.0};
+  f.b = f.world.create_body(body);
+  f.destroyed_body = f.world.create_body(body);
+  BallJointDef j;
+  j.body_a = f.ground;
+  j.body_b = f.a;
+  j.local_anchor_b = {-0.5, 0.0, 0.0};
+  f.joint = f.world.create_ball_joint(j);
+  j.body_a = f.a;
+  j.body_b = f.b;
+  f.destroyed_joint = f.world.create_ball_joint(j);
+  f.world.destroy_joint(f.destroyed_joint);
+  f.world.destroy_body(f.destroyed_body);
+  for (int i = 0; i < 3; ++i) f.world.step(1.0 / 60.0);  // impulses and state are non-trivial
+  return f;
+}
+
+// Runs `call` on a fresh world, expects InvalidArgument naming `field` and mentioning
+// `value`, and the world's full state unchanged.
+void expect_rejected(const std::function<void(Fixture&)>& call, const std::string& field,
+                     const std::string& value) {
+  Fixture f = make_world();
+  const std::uint64_t before = f.world.state_hash();
+  try {
+    call(f);
+    ADD_FAILURE() << "accepted; expected rejection of " << field;
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(value), std::string::npos)
+        << "message '" << e.what() << "' should show the value " << value;
+  }
+  EXPECT_EQ(f.world.state_hash(), before) << "world changed by a rejected call on " << field;
+}
+
+BodyDef dynamic_body() { return BodyDef{}; }
+
+TEST(Validation, BodyDefRejections) {
+  const auto create = [](auto mutate) {
+    return [mutate](Fixture& f) {
+      BodyDef d = dynamic_body();
+      mutate(d);
+      f.world.create_body(d);
+    };
+  };
+  expect_rejected(create([](BodyDef& d) { d.position.x() = kNan; }), "BodyDef.position", "nan");
+  expect_rejected(create([](BodyDef& d) { d.position.z() = kInf; }), "BodyDef.position", "inf");
+  expect_rejected(create([](BodyDef& d) { d.linear_velocity.y() = kNan; }), "BodyDef.linear_velocity", "nan");
+  expect_rejected(create([](BodyDef& d) { d.angular_velocity.x() = -kInf; }), "BodyDef.angular_velocity", "-inf");
+  expect_rejected(create([](BodyDef& d) { d.orientation.w() = kNan; }), "BodyDef.orientation", "nan");
+  expect_rejected(create([](BodyDef& d) { d.orientation = Eigen::Quaterniond(2, 0, 0, 0); }),
+                  "BodyDef.orientation", "norm 2");
+  expect_rejected(create([](BodyDef& d) { d.mass = -1.0; }), "BodyDef.mass", "-1");
+  expect_rejected(create([](BodyDef& d) { d.mass = 0.0; }), "BodyDef.mass", "0");
+  expect_rejected(create([](BodyDef& d) { d.mass = kInf; }), "BodyDef.mass", "inf");
+  expect_rejected(create([](BodyDef& d) { d.mass = kNan; }), "BodyDef.mass", "nan");
+  expect_rejected(create([](BodyDef& d) { d.inertia(0, 1) = 0.001; }), "BodyDef.inertia", "symmetric");
+  expect_rejected(create([](BodyDef& d) { d.inertia(2, 2) = -0.004; }), "BodyDef.inertia", "-0.004");
+  expect_rejected(create([](BodyDef& d) { d.inertia.setZero(); }), "BodyDef.inertia", "positive definite");
+  expect_rejected(create([](BodyDef& d) { d.inertia(1, 1) = kNan; }), "BodyDef.inertia", "nan");
+  expect_rejected(create([](BodyDef& d) { d.gravity_scale = kNan; }), "BodyDef.gravity_scale", "nan");
+  expect_rejected(create([](BodyDef& d) { d.linear_damping = -0.5; }), "BodyDef.linear_damping", "-0.5");
+  expect_rejected(create([](BodyDef& d) { d.angular_damping = kInf; }), "BodyDef.angular_damping", "inf");
+  expect_rejected(create([](BodyDef& d) {
+                    d.type = BodyType::Static;
+                    d.linear_velocity = {1, 0, 0};
+                  }),
+                  "BodyDef.linear_velocity", "static");
+}
+
+TEST(Validation, StaticAndKinematicBodiesIgnoreMass) {
+  World w;
+  BodyDef d;
+  d.type = BodyType::Kinematic;
+  d.mass = -3.0;  // not used by a kinematic body, so not an error
+  EXPECT_NO_THROW(w.create_body(d));
+}
+
+TEST(Validation, UnknownAndDestroyedIds) {
+  expect_rejected([](Fixture& f) { f.world.destroy_body(f.destroyed_body); }, "body", "BodyId{3");
+  expect_rejected([](Fixture& f) { f.world.set_position(BodyId{99, 0}, {0, 0, 0}); }, "body", "BodyId{99");
+  expect_rejected([](Fixture& f) { f.world.destroy_joint(f.destroyed_joint); }, "joint", "JointId{1");
+  expect_rejected([](Fixture& f) { f.world.destroy_joint(JointId{42, 0}); }, "joint", "JointId{42");
+  expect_rejected(
+      [](Fixture& f) {
+        BallJointDef j;
+        j.body_a = f.a;
+        j.body_b = f.destroyed_body;
+        f.world.create_ball_joint(j);
+      },
+      "BallJointDef.body_b", "BodyId{3");
+  expect_rejected(
+      [](Fixture& f) {
+        DistanceJointDef j;
+        j.body_a = BodyId{};
+        j.body_b = f.b;
+        f.world.create_distance_joint(j);
+      },
+      "DistanceJointDef.body_a", "BodyId{4294967295");
+  // Stale handles stay invalid even after their slot is reused.
+  Fixture f = make_world();
+  const BodyId reused = f.world.create_body(BodyDef{});
+  EXPECT_EQ(reused.index, f.destroyed_body.index);
+  EXPECT_FALSE(f.world.is_valid(f.destroyed_body));
+  EXPECT_THROW(f.world.body(f.destroyed_body), InvalidArgument);
+}
+
+TEST(Validation, JointRejections) {
+  const auto ball = [](auto mutate) {
+    return [mutate](Fixture& f) {
+      BallJointDef j;
+      j.body_a = f.a;
+      j.body_b = f.b;
+      mutate(f, j);
+      f.world.create_ball_joint(j);
+    };
+  };
+  expect_rejected(ball([](Fixture& f, BallJointDef& j) { j.body_b = f.a; }), "BallJointDef.body_b", "same body");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.local_anchor_a.y() = kNan; }),
+                  "BallJointDef.local_anchor_a", "nan");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.local_anchor_b.x() = kInf; }),
+                  "BallJointDef.local_anchor_b", "inf");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(-1.0, 0.5); }),
+                  "BallJointDef.spring.hertz", "-1");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(kNan, 0.5); }),
+                  "BallJointDef.spring.hertz", "nan");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(5.0, -0.1); }),
+                  "BallJointDef.spring.damping_ratio", "-0.1");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(5.0, kInf); }),
+                  "BallJointDef.spring.damping_ratio", "inf");
+
+  const auto distance = [](auto mutate) {
+    return [mutate](Fixture& f) {
+      DistanceJointDef j;
+      j.body_a = f.a;
+      j.body_b = f.b;
+      mutate(j);
+      f.world.create_distance_joint(j);
+    };
+  };
+  expect_rejected(distance([](DistanceJointDef& j) {
+                    j.min_length = 2.0;
+                    j.max_length = 1.0;
+                  }),
+                  "DistanceJointDef.max_length", "min_length (2)");
+  expect_rejected(distance([](DistanceJointDef& j) { j.max_length = kNan; }), "DistanceJointDef.max_length", "nan");
+  expect_rejected(distance([](DistanceJointDef& j) { j.min_length = -0.1; }), "DistanceJointDef.min_length", "-0.1");
+  expect_rejected(distance([](DistanceJointDef& j) { j.rest_length = kInf; }), "DistanceJointDef.rest_length", "inf");
+  expect_rejected(distance([](DistanceJointDef& j) { j.rest_length = -1; }), "DistanceJointDef.rest_length", "-1");
+}
+
+TEST(Validation, SetterRejections) {
+  expect_rejected([](Fixture& f) { f.world.set_position(f.a, {kNan, 0, 0}); }, "position", "nan");
+  expect_rejected([](Fixture& f) { f.world.set_orientation(f.a, Eigen::Quaterniond(0, 0, 0, 0)); },
+                  "orientation", "norm 0");
+  expect_rejected([](Fixture& f) { f.world.set_linear_velocity(f.a, {0, kInf, 0}); }, "velocity", "inf");
+  expect_rejected([](Fixture& f) { f.world.set_angular_velocity(f.a, {0, 0, kNan}); }, "velocity", "nan");
+  expect_rejected([](Fixture& f) { f.world.set_linear_velocity(f.ground, {1, 0, 0}); }, "velocity", "static");
+  expect_rejected([](Fixture& f) { f.world.set_mass_properties(f.a, -2.0, Eigen::Matrix3d::Identity()); },
+                  "mass", "-2");
+  expect_rejected(
+      [](Fixture& f) { f.world.set_mass_properties(f.a, 1.0, Eigen::Matrix3d::Identity() * -1.0); },
+      "inertia", "positive definite");
+  expect_rejected([](Fixture& f) { f.world.set_mass_properties(f.ground, 1.0, Eigen::Matrix3d::Identity()); },
+                  "body", "static");
+}
+
+TEST(Validation, StepAndSettingsRejections) {
+  expect_rejected([](Fixture& f) { f.world.step(0.0); }, "dt", "0");
+  expect_rejected([](Fixture& f) { f.world.step(-1.0 / 60.0); }, "dt", "-0.0166");
+  expect_rejected([](Fixture& f) { f.world.step(kNan); }, "dt", "nan");
+  expect_rejected([](Fixture& f) { f.world.step(kInf); }, "dt", "inf");
+  const auto settings = [](auto mutate) {
+    return [mutate](Fixture& f) {
+      WorldSettings s = f.world.settings();
+      mutate(s);
+      f.world.set_settings(s);
+    };
+  };
+  expect_rejected(settings([](WorldSettings& s) { s.substeps = 0; }), "WorldSettings.substeps", "0");
+  expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }), "WorldSettings.relax_iterations", "-1");
+  expect_rejected(settings([](WorldSettings& s) { s.threads = 0; }), "WorldSettings.threads", "0");
+  expect_rejected(settings([](WorldSettings& s) { s.gravity.y() = kNan; }), "WorldSettings.gravity", "nan");
+  expect_rejected(settings([](WorldSettings& s) { s.rigid_hertz = 0.0; }), "WorldSettings.rigid_hertz", "0");
+  expect_rejected(settings([](WorldSettings& s) { s.max_correction_speed = -1.0; }),
+                  "WorldSettings.max_correction_speed", "-1");
+  EXPECT_THROW(World(WorldSettings{.substeps = 0}), InvalidArgument);
+}
+
+// The hash really covers what the rejections could have touched: any accepted change moves it.
+TEST(Validation, StateHashSeesEveryKindOfChange) {
+  Fixture f = make_world();
+  std::uint64_t h = f.world.state_hash();
+  const auto changed = [&] {
+    const std::uint64_t now = f.world.state_hash();
+    const bool moved = now != h;
+    h = now;
+    return moved;
+  };
+  f.world.set_position(f.a, {1.0, 0.0, 1e-9});
+  EXPECT_TRUE(changed());
+  f.world.set_linear_velocity(f.b, {0.0, 1e-6, 0.0});
+  EXPECT_TRUE(changed());
+  f.world.set_mass_properties(f.b, 1.5, Eigen::Matrix3d::Identity() * 0.01);
+  EXPECT_TRUE(changed());
+  BallJointDef j;
+  j.body_a = f.a;
+  j.body_b = f.b;
+  const JointId id = f.world.create_ball_joint(j);
+  EXPECT_TRUE(changed());
+  f.world.step(1.0 / 60.0);
+  EXPECT_TRUE(changed());
+  f.world.destroy_joint(id);
+  EXPECT_TRUE(changed());
+  WorldSettings s = f.world.settings();
+  s.relax_iterations = 2;
+  f.world.set_settings(s);
+  EXPECT_TRUE(changed());
+}
+
+}  // namespace
+}  // namespace softstep
