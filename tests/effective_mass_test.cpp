@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "softstep/simd/ball_joint_kernel.hpp"
 #include "softstep/simd/distance_joint_kernel.hpp"
 
 namespace softstep::simd {
@@ -23,16 +24,10 @@ RandomBody random_body(std::mt19937& rng) {
   const double m = mass(rng);
   const Eigen::Vector3d principal(mass(rng) * 0.05, mass(rng) * 0.05, mass(rng) * 0.05);
   const Eigen::Matrix3d rot =
-      Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+      Eigen::Quaterniond(Eigen::Vector4d(u(rng), u(rng), u(rng), u(rng)).normalized())
+          .toRotationMatrix();
   const Eigen::Matrix3d inertia = rot * principal.asDiagonal() * rot.transpose();
   return {1.0 / m, inertia.inverse(), Eigen::Vector3d(u(rng), u(rng), u(rng))};
-}
-
-MassRecord record(const RandomBody& b) {
-  const Eigen::Matrix3d& i = b.inv_inertia;
-  return {static_cast<float>(b.inv_mass),
-          {float(i(0, 0)), float(i(1, 1)), float(i(2, 2)), float(i(0, 1)), float(i(0, 2)), float(i(1, 2))},
-          0.0f};
 }
 
 // The unit-impulse experiment, in double, with no Jacobian in sight.
@@ -45,59 +40,44 @@ double measured_effective_mass(const RandomBody& a, const RandomBody& b, const E
   return 1.0 / v_rel;
 }
 
+Mat3Sym<float> lanes(const Eigen::Matrix3d& m) {
+  return {float(m(0, 0)), float(m(1, 1)), float(m(2, 2)),
+          float(m(0, 1)), float(m(0, 2)), float(m(1, 2))};
+}
+Vec3<float> lanes(const Eigen::Vector3d& v) {
+  return {float(v.x()), float(v.y()), float(v.z())};
+}
+
 TEST(EffectiveMass, UnitImpulseExperimentMatchesKernels) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int trial = 0; trial < 200; ++trial) {
     const RandomBody a = random_body(rng), b = random_body(rng);
-    const MassRecord masses[3] = {MassRecord{}, record(a), record(b)};
-    const BodyArrays arrays{nullptr, nullptr, masses};
-    const SubstepContext ctx{0.01f, 100.0f, {0, 1, 0}, 1.0f};
-
-    BallJointGroup<1> ball{};
-    ball.body_a[0] = 1;
-    ball.body_b[0] = 2;
-    for (int k = 0; k < 3; ++k) {
-      ball.r_a[k][0] = float(a.r[k]);
-      ball.r_b[k][0] = float(b.r[k]);
-    }
-    ball.hertz[0] = kRigidHertz;
-    prepare_ball_joints<float>(ball, arrays, ctx);
-    Eigen::Matrix3d k_inv;
-    k_inv << ball.k_inv[0][0], ball.k_inv[3][0], ball.k_inv[4][0], ball.k_inv[3][0], ball.k_inv[1][0],
-        ball.k_inv[5][0], ball.k_inv[4][0], ball.k_inv[5][0], ball.k_inv[2][0];
-    const Eigen::Matrix3d k = k_inv.inverse();
-
     const Eigen::Vector3d n = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
     const double expected = measured_effective_mass(a, b, n);
-    // Ball joint: the mass seen along n is 1 / (n^T K n).
-    EXPECT_NEAR(1.0 / n.dot(k * n), expected, 2e-4 * expected) << "trial " << trial;
 
-    // Distance joint along n: its axial mass is the same quantity. Place B's centre so that
-    // the anchors lie 1 m apart along n.
-    DistanceJointGroup<1> dist{};
-    dist.body_a[0] = 1;
-    dist.body_b[0] = 2;
-    const Eigen::Vector3d center_delta = a.r + n - b.r;
-    for (int kk = 0; kk < 3; ++kk) {
-      dist.r_a[kk][0] = float(a.r[kk]);
-      dist.r_b[kk][0] = float(b.r[kk]);
-      dist.center_delta[kk][0] = float(center_delta[kk]);
-    }
-    dist.hertz[0] = kRigidHertz;
-    prepare_distance_joints<float>(dist, arrays, ctx);
-    EXPECT_NEAR(dist.axial_mass[0], expected, 2e-4 * expected) << "trial " << trial;
+    // Ball joint: the mass seen along n is 1 / (n^T K n).
+    const Mat3Sym<float> k_inv =
+        inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
+                               float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r));
+    Eigen::Matrix3d k_inv_m;
+    k_inv_m << k_inv.xx, k_inv.xy, k_inv.xz, k_inv.xy, k_inv.yy, k_inv.yz, k_inv.xz, k_inv.yz,
+        k_inv.zz;
+    EXPECT_NEAR(1.0 / n.dot(k_inv_m.inverse() * n), expected, 2e-4 * expected) << "trial " << trial;
+
+    // Distance joint along n: its axial mass is the same quantity.
+    const float axial = axial_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
+                                   float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r), lanes(n));
+    EXPECT_NEAR(axial, expected, 2e-4 * expected) << "trial " << trial;
   }
 }
 
 TEST(EffectiveMass, ImmovableBodiesGiveZeroNotNan) {
-  const MassRecord masses[1] = {MassRecord{}};
-  const BodyArrays arrays{nullptr, nullptr, masses};
-  const SubstepContext ctx{0.01f, 100.0f, {0, 1, 0}, 1.0f};
-  BallJointGroup<1> ball{};
-  ball.hertz[0] = kRigidHertz;
-  prepare_ball_joints<float>(ball, arrays, ctx);
-  for (auto& row : ball.k_inv) EXPECT_EQ(row[0], 0.0f);
+  const Mat3Sym<float> zero{0, 0, 0, 0, 0, 0};
+  const Vec3<float> r{0.1f, 0.2f, 0.3f};
+  const Mat3Sym<float> k_inv = inverse_effective_mass(0.0f, zero, r, 0.0f, zero, r);
+  for (float v : {k_inv.xx, k_inv.yy, k_inv.zz, k_inv.xy, k_inv.xz, k_inv.yz}) EXPECT_EQ(v, 0.0f);
+  EXPECT_EQ(axial_mass(0.0f, zero, r, 0.0f, zero, r, Vec3<float>{1, 0, 0}), 0.0f);
 }
 
 }  // namespace

@@ -1,13 +1,13 @@
 // Colouring invariants on thousands of random graphs, the colour counts of chains and grids,
 // and incremental updates equal to a replay of the same history.
+#include "softstep/graph_coloring/graph_coloring.hpp"
+
 #include <gtest/gtest.h>
 
-#include <random>
 #include <algorithm>
 #include <map>
+#include <random>
 #include <set>
-
-#include "softstep/graph_coloring/graph_coloring.hpp"
 
 namespace softstep::graph_coloring {
 namespace {
@@ -36,7 +36,8 @@ void check_invariants(const GraphColoring& g, const std::vector<Edge>& edges,
     ++seen[id];
     ASSERT_EQ(g.color_of(id), kOverflow);
   }
-  for (std::size_t i = 0; i < edges.size(); ++i) ASSERT_EQ(seen[i], present[i] ? 1 : 0) << "constraint " << i;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    ASSERT_EQ(seen[i], present[i] ? 1 : 0) << "constraint " << i;
 }
 
 std::vector<Edge> random_graph(std::mt19937& rng, int kind) {
@@ -75,7 +76,8 @@ TEST(GraphColoring, RandomGraphsKeepTheInvariants) {
       if (e.a != kNonBlocking) ++degree[e.a];
       if (e.b != kNonBlocking) ++degree[e.b];
     }
-    const bool hub = std::ranges::any_of(degree, [](const auto& d) { return d.second > kColorCount; });
+    const bool hub =
+        std::ranges::any_of(degree, [](const auto& d) { return d.second > kColorCount; });
     if (hub) {
       EXPECT_GT(g.overflow().size(), 0u);
     }
@@ -169,7 +171,8 @@ TEST(GraphColoring, IncrementalEqualsReplayOfTheSameHistory) {
 
 TEST(GraphColoring, RemovalFreesTheBodies) {
   GraphColoring g;
-  for (std::uint32_t i = 0; i < kColorCount; ++i) g.add(i, 0, i + 1);  // hub body 0 fills every colour
+  for (std::uint32_t i = 0; i < kColorCount; ++i)
+    g.add(i, 0, i + 1);  // hub body 0 fills every colour
   EXPECT_EQ(g.add(kColorCount, 0, 100), kOverflow);
   g.remove(5);
   const int color = g.add(5, 0, 200);

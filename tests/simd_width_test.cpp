@@ -3,6 +3,8 @@
 // once").
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include "scenes/chain_scene.hpp"
 
 namespace softstep {
@@ -27,6 +29,10 @@ std::uint64_t run_chain(SimdWidth width, const Variant& v, int links, int steps)
   return world.state_hash();
 }
 
+void PrintTo(const Variant& v, std::ostream* os) {
+  *os << v.name;
+}
+
 class SimdWidths : public ::testing::TestWithParam<Variant> {};
 
 TEST_P(SimdWidths, ChainIsBitIdenticalAcrossWidths) {
@@ -49,7 +55,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Variant{scenes::ChainJoint::Ball, Spring::rigid(), "rigid_ball"},
                       Variant{scenes::ChainJoint::Ball, Spring::soft(5.0, 0.3), "soft_ball"},
                       Variant{scenes::ChainJoint::Distance, Spring::rigid(), "rigid_distance"},
-                      Variant{scenes::ChainJoint::Distance, Spring::soft(8.0, 0.1), "soft_distance"}),
+                      Variant{scenes::ChainJoint::Distance, Spring::soft(8.0, 0.1),
+                              "soft_distance"}),
     [](const ::testing::TestParamInfo<Variant>& p) { return std::string(p.param.name); });
 
 // The widths really differ in layout: the same chain packs into 1-, 4- and 8-lane groups.

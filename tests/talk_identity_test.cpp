@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <ostream>
 
 #include "softstep/softstep.hpp"
 
@@ -15,6 +16,10 @@ namespace {
 struct Case {
   double k, c, h, mass;
 };
+
+void PrintTo(const Case& p, std::ostream* os) {
+  *os << "k " << p.k << " c " << p.c << " h " << p.h << " m " << p.mass;
+}
 
 class TalkIdentity : public ::testing::TestWithParam<Case> {};
 

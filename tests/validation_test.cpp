@@ -61,7 +61,9 @@ void expect_rejected(const std::function<void(Fixture&)>& call, const std::strin
   EXPECT_EQ(f.world.state_hash(), before) << "world changed by a rejected call on " << field;
 }
 
-BodyDef dynamic_body() { return BodyDef{}; }
+BodyDef dynamic_body() {
+  return BodyDef{};
+}
 
 TEST(Validation, BodyDefRejections) {
   const auto create = [](auto mutate) {
@@ -73,22 +75,31 @@ TEST(Validation, BodyDefRejections) {
   };
   expect_rejected(create([](BodyDef& d) { d.position.x() = kNan; }), "BodyDef.position", "nan");
   expect_rejected(create([](BodyDef& d) { d.position.z() = kInf; }), "BodyDef.position", "inf");
-  expect_rejected(create([](BodyDef& d) { d.linear_velocity.y() = kNan; }), "BodyDef.linear_velocity", "nan");
-  expect_rejected(create([](BodyDef& d) { d.angular_velocity.x() = -kInf; }), "BodyDef.angular_velocity", "-inf");
-  expect_rejected(create([](BodyDef& d) { d.orientation.w() = kNan; }), "BodyDef.orientation", "nan");
+  expect_rejected(create([](BodyDef& d) { d.linear_velocity.y() = kNan; }),
+                  "BodyDef.linear_velocity", "nan");
+  expect_rejected(create([](BodyDef& d) { d.angular_velocity.x() = -kInf; }),
+                  "BodyDef.angular_velocity", "-inf");
+  expect_rejected(create([](BodyDef& d) { d.orientation.w() = kNan; }), "BodyDef.orientation",
+                  "nan");
   expect_rejected(create([](BodyDef& d) { d.orientation = Eigen::Quaterniond(2, 0, 0, 0); }),
                   "BodyDef.orientation", "norm 2");
   expect_rejected(create([](BodyDef& d) { d.mass = -1.0; }), "BodyDef.mass", "-1");
   expect_rejected(create([](BodyDef& d) { d.mass = 0.0; }), "BodyDef.mass", "0");
   expect_rejected(create([](BodyDef& d) { d.mass = kInf; }), "BodyDef.mass", "inf");
   expect_rejected(create([](BodyDef& d) { d.mass = kNan; }), "BodyDef.mass", "nan");
-  expect_rejected(create([](BodyDef& d) { d.inertia(0, 1) = 0.001; }), "BodyDef.inertia", "symmetric");
-  expect_rejected(create([](BodyDef& d) { d.inertia(2, 2) = -0.004; }), "BodyDef.inertia", "-0.004");
-  expect_rejected(create([](BodyDef& d) { d.inertia.setZero(); }), "BodyDef.inertia", "positive definite");
+  expect_rejected(create([](BodyDef& d) { d.inertia(0, 1) = 0.001; }), "BodyDef.inertia",
+                  "symmetric");
+  expect_rejected(create([](BodyDef& d) { d.inertia(2, 2) = -0.004; }), "BodyDef.inertia",
+                  "-0.004");
+  expect_rejected(create([](BodyDef& d) { d.inertia.setZero(); }), "BodyDef.inertia",
+                  "positive definite");
   expect_rejected(create([](BodyDef& d) { d.inertia(1, 1) = kNan; }), "BodyDef.inertia", "nan");
-  expect_rejected(create([](BodyDef& d) { d.gravity_scale = kNan; }), "BodyDef.gravity_scale", "nan");
-  expect_rejected(create([](BodyDef& d) { d.linear_damping = -0.5; }), "BodyDef.linear_damping", "-0.5");
-  expect_rejected(create([](BodyDef& d) { d.angular_damping = kInf; }), "BodyDef.angular_damping", "inf");
+  expect_rejected(create([](BodyDef& d) { d.gravity_scale = kNan; }), "BodyDef.gravity_scale",
+                  "nan");
+  expect_rejected(create([](BodyDef& d) { d.linear_damping = -0.5; }), "BodyDef.linear_damping",
+                  "-0.5");
+  expect_rejected(create([](BodyDef& d) { d.angular_damping = kInf; }), "BodyDef.angular_damping",
+                  "inf");
   expect_rejected(create([](BodyDef& d) {
                     d.type = BodyType::Static;
                     d.linear_velocity = {1, 0, 0};
@@ -106,8 +117,13 @@ TEST(Validation, StaticAndKinematicBodiesIgnoreMass) {
 
 TEST(Validation, UnknownAndDestroyedIds) {
   expect_rejected([](Fixture& f) { f.world.destroy_body(f.destroyed_body); }, "body", "BodyId{3");
-  expect_rejected([](Fixture& f) { f.world.set_position(BodyId{99, 0}, {0, 0, 0}); }, "body", "BodyId{99");
-  expect_rejected([](Fixture& f) { f.world.destroy_joint(f.destroyed_joint); }, "joint", "JointId{1");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_position(BodyId{99, 0}, {0, 0, 0});
+      },
+      "body", "BodyId{99");
+  expect_rejected([](Fixture& f) { f.world.destroy_joint(f.destroyed_joint); }, "joint",
+                  "JointId{1");
   expect_rejected([](Fixture& f) { f.world.destroy_joint(JointId{42, 0}); }, "joint", "JointId{42");
   expect_rejected(
       [](Fixture& f) {
@@ -143,7 +159,8 @@ TEST(Validation, JointRejections) {
       f.world.create_ball_joint(j);
     };
   };
-  expect_rejected(ball([](Fixture& f, BallJointDef& j) { j.body_b = f.a; }), "BallJointDef.body_b", "same body");
+  expect_rejected(ball([](Fixture& f, BallJointDef& j) { j.body_b = f.a; }), "BallJointDef.body_b",
+                  "same body");
   expect_rejected(ball([](Fixture&, BallJointDef& j) { j.local_anchor_a.y() = kNan; }),
                   "BallJointDef.local_anchor_a", "nan");
   expect_rejected(ball([](Fixture&, BallJointDef& j) { j.local_anchor_b.x() = kInf; }),
@@ -171,26 +188,44 @@ TEST(Validation, JointRejections) {
                     j.max_length = 1.0;
                   }),
                   "DistanceJointDef.max_length", "min_length (2)");
-  expect_rejected(distance([](DistanceJointDef& j) { j.max_length = kNan; }), "DistanceJointDef.max_length", "nan");
-  expect_rejected(distance([](DistanceJointDef& j) { j.min_length = -0.1; }), "DistanceJointDef.min_length", "-0.1");
-  expect_rejected(distance([](DistanceJointDef& j) { j.rest_length = kInf; }), "DistanceJointDef.rest_length", "inf");
-  expect_rejected(distance([](DistanceJointDef& j) { j.rest_length = -1; }), "DistanceJointDef.rest_length", "-1");
+  expect_rejected(distance([](DistanceJointDef& j) { j.max_length = kNan; }),
+                  "DistanceJointDef.max_length", "nan");
+  expect_rejected(distance([](DistanceJointDef& j) { j.min_length = -0.1; }),
+                  "DistanceJointDef.min_length", "-0.1");
+  expect_rejected(distance([](DistanceJointDef& j) { j.rest_length = kInf; }),
+                  "DistanceJointDef.rest_length", "inf");
+  expect_rejected(distance([](DistanceJointDef& j) { j.rest_length = -1; }),
+                  "DistanceJointDef.rest_length", "-1");
 }
 
 TEST(Validation, SetterRejections) {
   expect_rejected([](Fixture& f) { f.world.set_position(f.a, {kNan, 0, 0}); }, "position", "nan");
   expect_rejected([](Fixture& f) { f.world.set_orientation(f.a, Eigen::Quaterniond(0, 0, 0, 0)); },
                   "orientation", "norm 0");
-  expect_rejected([](Fixture& f) { f.world.set_linear_velocity(f.a, {0, kInf, 0}); }, "velocity", "inf");
-  expect_rejected([](Fixture& f) { f.world.set_angular_velocity(f.a, {0, 0, kNan}); }, "velocity", "nan");
-  expect_rejected([](Fixture& f) { f.world.set_linear_velocity(f.ground, {1, 0, 0}); }, "velocity", "static");
-  expect_rejected([](Fixture& f) { f.world.set_mass_properties(f.a, -2.0, Eigen::Matrix3d::Identity()); },
-                  "mass", "-2");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_linear_velocity(f.a, {0, kInf, 0});
+      },
+      "velocity", "inf");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_angular_velocity(f.a, {0, 0, kNan});
+      },
+      "velocity", "nan");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_linear_velocity(f.ground, {1, 0, 0});
+      },
+      "velocity", "static");
+  expect_rejected(
+      [](Fixture& f) { f.world.set_mass_properties(f.a, -2.0, Eigen::Matrix3d::Identity()); },
+      "mass", "-2");
   expect_rejected(
       [](Fixture& f) { f.world.set_mass_properties(f.a, 1.0, Eigen::Matrix3d::Identity() * -1.0); },
       "inertia", "positive definite");
-  expect_rejected([](Fixture& f) { f.world.set_mass_properties(f.ground, 1.0, Eigen::Matrix3d::Identity()); },
-                  "body", "static");
+  expect_rejected(
+      [](Fixture& f) { f.world.set_mass_properties(f.ground, 1.0, Eigen::Matrix3d::Identity()); },
+      "body", "static");
 }
 
 TEST(Validation, StepAndSettingsRejections) {
@@ -205,11 +240,15 @@ TEST(Validation, StepAndSettingsRejections) {
       f.world.set_settings(s);
     };
   };
-  expect_rejected(settings([](WorldSettings& s) { s.substeps = 0; }), "WorldSettings.substeps", "0");
-  expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }), "WorldSettings.relax_iterations", "-1");
+  expect_rejected(settings([](WorldSettings& s) { s.substeps = 0; }), "WorldSettings.substeps",
+                  "0");
+  expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }),
+                  "WorldSettings.relax_iterations", "-1");
   expect_rejected(settings([](WorldSettings& s) { s.threads = 0; }), "WorldSettings.threads", "0");
-  expect_rejected(settings([](WorldSettings& s) { s.gravity.y() = kNan; }), "WorldSettings.gravity", "nan");
-  expect_rejected(settings([](WorldSettings& s) { s.rigid_hertz = 0.0; }), "WorldSettings.rigid_hertz", "0");
+  expect_rejected(settings([](WorldSettings& s) { s.gravity.y() = kNan; }), "WorldSettings.gravity",
+                  "nan");
+  expect_rejected(settings([](WorldSettings& s) { s.rigid_hertz = 0.0; }),
+                  "WorldSettings.rigid_hertz", "0");
   expect_rejected(settings([](WorldSettings& s) { s.max_correction_speed = -1.0; }),
                   "WorldSettings.max_correction_speed", "-1");
   EXPECT_THROW(World(WorldSettings{.substeps = 0}), InvalidArgument);

@@ -9,7 +9,8 @@ namespace softstep::scenes {
 ChainScene build_chain(World& world, const ChainOptions& o) {
   if (o.links < 1 || o.chains < 1) {
     throw std::invalid_argument("build_chain: links and chains must be >= 1 (links " +
-                                std::to_string(o.links) + ", chains " + std::to_string(o.chains) + ")");
+                                std::to_string(o.links) + ", chains " + std::to_string(o.chains) +
+                                ")");
   }
   const Eigen::Vector3d step = o.layout == ChainLayout::Horizontal
                                    ? Eigen::Vector3d(o.link_spacing, 0.0, 0.0)
@@ -64,6 +65,8 @@ JointErrors joint_errors(const World& world, std::span<const JointId> joints) {
   return e;
 }
 
-int rows_per_joint(ChainJoint joint) { return joint == ChainJoint::Ball ? 3 : 1; }
+int rows_per_joint(ChainJoint joint) {
+  return joint == ChainJoint::Ball ? 3 : 1;
+}
 
 }  // namespace softstep::scenes

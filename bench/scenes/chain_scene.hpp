@@ -17,8 +17,8 @@ enum class ChainLayout {
 };
 
 struct ChainOptions {
-  int links = 1000;            // links per chain, >= 1
-  int chains = 1;              // parallel chains, >= 1
+  int links = 1000;  // links per chain, >= 1
+  int chains = 1;    // parallel chains, >= 1
   ChainJoint joint = ChainJoint::Ball;
   Spring spring = Spring::rigid();
   ChainLayout layout = ChainLayout::Horizontal;

@@ -6,11 +6,15 @@
 namespace softstep {
 
 namespace {
-double omega_of(double hertz) { return 2.0 * std::numbers::pi * hertz; }
+double omega_of(double hertz) {
+  return 2.0 * std::numbers::pi * hertz;
+}
 }  // namespace
 
 Spring Spring::designer(double frames, Oscillation oscillation, double frame_rate) {
-  const double zeta = oscillation == Oscillation::Free ? 0.0 : oscillation == Oscillation::Some ? 0.5 : 1.0;
+  const double zeta = oscillation == Oscillation::Free   ? 0.0
+                      : oscillation == Oscillation::Some ? 0.5
+                                                         : 1.0;
   return {frame_rate / frames, zeta};
 }
 

@@ -19,7 +19,8 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
   // A rigid row is a stiff spring while solving; a quarter of the sub-step rate keeps it
   // well inside what one Gauss-Seidel pass can follow without overshoot.
   const double hertz = std::min(s.rigid_hertz, 0.25 / static_cast<double>(h));
-  ctx.rigid = simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
+  ctx.rigid =
+      simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
   ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
   return ctx;
 }
@@ -73,12 +74,14 @@ void World::Impl::prepare_bodies(float h) {
 
 void World::Impl::integrate_velocities(float h) {
   SolverBodies& sb = solver_bodies;
-  for (std::uint32_t s : sb.movable) simd::integrate_velocity(sb.velocity[s + 1], sb.force[s + 1], h);
+  for (std::uint32_t s : sb.movable)
+    simd::integrate_velocity(sb.velocity[s + 1], sb.force[s + 1], h);
 }
 
 void World::Impl::integrate_positions(float h) {
   SolverBodies& sb = solver_bodies;
-  for (std::uint32_t s : sb.movable) simd::integrate_position(sb.delta[s + 1], sb.velocity[s + 1], h);
+  for (std::uint32_t s : sb.movable)
+    simd::integrate_position(sb.delta[s + 1], sb.velocity[s + 1], h);
 }
 
 void World::Impl::finalize_bodies() {
@@ -114,7 +117,7 @@ void World::step(double dt) {
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   JointSolverBase& joints = *w.joint_solver;
   const bool has_joints = w.joint_count > 0;
-  if (has_joints) joints.prepare(w.joints, w.bodies, arrays, ctx);
+  if (has_joints) joints.prepare(w.joints, w.bodies, ctx);
   for (int sub = 0; sub < s.substeps; ++sub) {
     w.integrate_velocities(h);
     if (has_joints) {

@@ -48,8 +48,7 @@ void positive(std::string_view call, std::string_view field, double value) {
   }
 }
 
-Eigen::Quaterniond unit_quaternion(std::string_view call, std::string_view field,
-                                   const Eigen::Quaterniond& q) {
+Quaternion unit_quaternion(std::string_view call, std::string_view field, const Quaternion& q) {
   const Eigen::Vector4d c = q.coeffs();
   const std::string value = "(x " + format(c.x()) + ", y " + format(c.y()) + ", z " +
                             format(c.z()) + ", w " + format(c.w()) + ")";
@@ -76,7 +75,8 @@ void inertia_tensor(std::string_view call, std::string_view field, const Eigen::
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(inertia, Eigen::EigenvaluesOnly);
   const double smallest = eigen.eigenvalues().minCoeff();
-  if (!(smallest > 0.0) || smallest < kMinMass * 1e-6 || eigen.eigenvalues().maxCoeff() > kMaxMass) {
+  if (!(smallest > 0.0) || smallest < kMinMass * 1e-6 ||
+      eigen.eigenvalues().maxCoeff() > kMaxMass) {
     reject(call, field, value,
            "must be positive definite with eigenvalues in [1e-36, 1e30] kg m^2 (smallest " +
                format(smallest) + ")");
@@ -93,7 +93,8 @@ void spring(std::string_view call, std::string_view field, const Spring& s) {
 }
 
 void body_def(std::string_view call, const BodyDef& def) {
-  if (def.type != BodyType::Static && def.type != BodyType::Kinematic && def.type != BodyType::Dynamic) {
+  if (def.type != BodyType::Static && def.type != BodyType::Kinematic &&
+      def.type != BodyType::Dynamic) {
     reject(call, "BodyDef.type", format(static_cast<double>(def.type)), "unknown body type");
   }
   finite(call, "BodyDef.position", def.position);

@@ -23,8 +23,7 @@ void finite(std::string_view call, std::string_view field, const Eigen::Vector3d
 void non_negative(std::string_view call, std::string_view field, double value);
 void positive(std::string_view call, std::string_view field, double value);
 // Normalizes a quaternion whose norm is within 1e-3 of 1; rejects anything else.
-Eigen::Quaterniond unit_quaternion(std::string_view call, std::string_view field,
-                                   const Eigen::Quaterniond& q);
+Quaternion unit_quaternion(std::string_view call, std::string_view field, const Quaternion& q);
 void dynamic_mass(std::string_view call, std::string_view field, double mass);
 void inertia_tensor(std::string_view call, std::string_view field, const Eigen::Matrix3d& inertia);
 void spring(std::string_view call, std::string_view field, const Spring& spring);

@@ -34,9 +34,10 @@ static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std:
                                BodyId id) {
   if (id.index >= w.bodies.size() || !w.bodies[id.index].alive ||
       w.bodies[id.index].generation != id.generation) {
-    validation::reject(call, field,
-                       "BodyId{" + std::to_string(id.index) + ", gen " + std::to_string(id.generation) + "}",
-                       "no such body (never created, or destroyed)");
+    validation::reject(
+        call, field,
+        "BodyId{" + std::to_string(id.index) + ", gen " + std::to_string(id.generation) + "}",
+        "no such body (never created, or destroyed)");
   }
   return id.index;
 }
@@ -44,14 +45,28 @@ static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std:
 static std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id) {
   if (id.index >= w.joints.size() || !w.joints[id.index].alive ||
       w.joints[id.index].generation != id.generation) {
-    validation::reject(call, "joint",
-                       "JointId{" + std::to_string(id.index) + ", gen " + std::to_string(id.generation) + "}",
-                       "no such joint (never created, or destroyed)");
+    validation::reject(
+        call, "joint",
+        "JointId{" + std::to_string(id.index) + ", gen " + std::to_string(id.generation) + "}",
+        "no such joint (never created, or destroyed)");
   }
   return id.index;
 }
 
 // ---- Impl helpers -------------------------------------------------------------------------
+
+// Reuses the most recently freed slot (its generation was bumped when it was freed), or
+// appends one: the ids handed out depend only on the sequence of calls.
+template <class Slot>
+static std::uint32_t take_slot(std::vector<Slot>& slots, std::vector<std::uint32_t>& free_list) {
+  if (!free_list.empty()) {
+    const std::uint32_t slot = free_list.back();
+    free_list.pop_back();
+    return slot;
+  }
+  slots.emplace_back();
+  return static_cast<std::uint32_t>(slots.size() - 1);
+}
 
 void World::Impl::unpack_joints() {
   if (joints_packed && joint_solver) joint_solver->save_impulses(joints);
@@ -71,7 +86,9 @@ World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
 
-const WorldSettings& World::settings() const { return impl_->settings; }
+const WorldSettings& World::settings() const {
+  return impl_->settings;
+}
 
 void World::set_settings(const WorldSettings& settings) {
   validation::settings("set_settings", settings);
@@ -90,14 +107,7 @@ void World::set_settings(const WorldSettings& settings) {
 BodyId World::create_body(const BodyDef& def) {
   validation::body_def("create_body", def);
   Impl& w = *impl_;
-  std::uint32_t slot;
-  if (!w.free_bodies.empty()) {
-    slot = w.free_bodies.back();
-    w.free_bodies.pop_back();
-  } else {
-    slot = static_cast<std::uint32_t>(w.bodies.size());
-    w.bodies.emplace_back();
-  }
+  const std::uint32_t slot = take_slot(w.bodies, w.free_bodies);
   BodySlot& b = w.bodies[slot];
   b.alive = true;
   b.type = def.type;
@@ -140,9 +150,8 @@ bool World::is_valid(BodyId id) const {
 
 BodyState World::body(BodyId id) const {
   const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
-  return {b.type,           b.position,      b.orientation,   b.linear_velocity,
-          b.angular_velocity, b.mass,        b.inertia,       b.gravity_scale,
-          b.linear_damping, b.angular_damping};
+  return {b.type, b.position, b.orientation,   b.linear_velocity, b.angular_velocity,
+          b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping};
 }
 
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {
@@ -151,30 +160,31 @@ void World::set_position(BodyId id, const Eigen::Vector3d& position) {
   impl_->bodies[slot].position = position;
 }
 
-void World::set_orientation(BodyId id, const Eigen::Quaterniond& orientation) {
+void World::set_orientation(BodyId id, const Quaternion& orientation) {
   const std::uint32_t slot = body_slot(*impl_, "set_orientation", "body", id);
-  const Eigen::Quaterniond q = validation::unit_quaternion("set_orientation", "orientation", orientation);
+  const Quaternion q = validation::unit_quaternion("set_orientation", "orientation", orientation);
   impl_->bodies[slot].orientation = q;
 }
 
-void World::set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity) {
-  const std::uint32_t slot = body_slot(*impl_, "set_linear_velocity", "body", id);
-  validation::finite("set_linear_velocity", "velocity", velocity);
-  if (impl_->bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
-    validation::reject("set_linear_velocity", "velocity", validation::format(velocity),
+namespace {
+void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen::Vector3d& velocity,
+                  Eigen::Vector3d BodySlot::*member) {
+  const std::uint32_t slot = body_slot(w, call, "body", id);
+  validation::finite(call, "velocity", velocity);
+  if (w.bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
+    validation::reject(call, "velocity", validation::format(velocity),
                        "a static body cannot move (use a kinematic body)");
   }
-  impl_->bodies[slot].linear_velocity = velocity;
+  w.bodies[slot].*member = velocity;
+}
+}  // namespace
+
+void World::set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity) {
+  set_velocity(*impl_, "set_linear_velocity", id, velocity, &BodySlot::linear_velocity);
 }
 
 void World::set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity) {
-  const std::uint32_t slot = body_slot(*impl_, "set_angular_velocity", "body", id);
-  validation::finite("set_angular_velocity", "velocity", velocity);
-  if (impl_->bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
-    validation::reject("set_angular_velocity", "velocity", validation::format(velocity),
-                       "a static body cannot move (use a kinematic body)");
-  }
-  impl_->bodies[slot].angular_velocity = velocity;
+  set_velocity(*impl_, "set_angular_velocity", id, velocity, &BodySlot::angular_velocity);
 }
 
 void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia) {
@@ -191,7 +201,9 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
   b.inverse_inertia = inertia.inverse();
 }
 
-std::size_t World::body_count() const { return impl_->body_count; }
+std::size_t World::body_count() const {
+  return impl_->body_count;
+}
 
 Eigen::Vector3d World::local_point(BodyId id, const Eigen::Vector3d& world_point) const {
   const BodySlot& b = impl_->bodies[body_slot(*impl_, "local_point", "body", id)];
@@ -226,14 +238,7 @@ JointEnds check_joint_ends(const World::Impl& w, std::string_view call, BodyId a
 }  // namespace
 
 static JointId add_joint(World::Impl& w, JointSlot&& joint) {
-  std::uint32_t slot;
-  if (!w.free_joints.empty()) {
-    slot = w.free_joints.back();
-    w.free_joints.pop_back();
-  } else {
-    slot = static_cast<std::uint32_t>(w.joints.size());
-    w.joints.emplace_back();
-  }
+  const std::uint32_t slot = take_slot(w.joints, w.free_joints);
   w.unpack_joints();
   joint.generation = w.joints[slot].generation;
   joint.alive = true;
@@ -253,9 +258,9 @@ static JointId add_joint(World::Impl& w, JointSlot&& joint) {
 
 JointId World::create_ball_joint(const BallJointDef& def) {
   Impl& w = *impl_;
-  const JointEnds ends = check_joint_ends(w, "create_ball_joint", def.body_a, def.body_b,
-                                          def.local_anchor_a, def.local_anchor_b, def.spring,
-                                          "BallJointDef");
+  const JointEnds ends =
+      check_joint_ends(w, "create_ball_joint", def.body_a, def.body_b, def.local_anchor_a,
+                       def.local_anchor_b, def.spring, "BallJointDef");
   JointSlot j;
   j.type = JointType::Ball;
   j.body_a = ends.a;
@@ -318,7 +323,9 @@ JointType World::joint_type(JointId id) const {
   return impl_->joints[joint_slot(*impl_, "joint_type", id)].type;
 }
 
-std::size_t World::joint_count() const { return impl_->joint_count; }
+std::size_t World::joint_count() const {
+  return impl_->joint_count;
+}
 
 JointReading World::joint_reading(JointId id) const {
   const Impl& w = *impl_;
@@ -343,7 +350,8 @@ JointReading World::joint_reading(JointId id) const {
       r.error = std::abs(length - j.rest_length);
     }
   }
-  r.force = w.last_substep > 0.0 ? Eigen::Vector3d(r.impulse / w.last_substep) : Eigen::Vector3d::Zero();
+  r.force =
+      w.last_substep > 0.0 ? Eigen::Vector3d(r.impulse / w.last_substep) : Eigen::Vector3d::Zero();
   return r;
 }
 

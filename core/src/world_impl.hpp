@@ -17,7 +17,7 @@ struct BodySlot {
   bool alive = false;
   BodyType type = BodyType::Dynamic;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+  Quaternion orientation = Quaternion::Identity();
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();
   double mass = 0.0;
@@ -66,13 +66,14 @@ class JointSolverBase {
   virtual ~JointSolverBase() = default;
   virtual int lanes() const = 0;
   // Lays out all joints from the colouring; impulses come from the slots.
-  virtual void pack(const graph_coloring::GraphColoring& coloring, const std::vector<JointSlot>& joints,
-                    const std::vector<BodySlot>& bodies) = 0;
+  virtual void pack(const graph_coloring::GraphColoring& coloring,
+                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies) = 0;
   // Copies the lanes' impulses back into the slots (before a re-pack).
   virtual void save_impulses(std::vector<JointSlot>& joints) const = 0;
   virtual Eigen::Vector3f impulse(std::uint32_t joint_slot) const = 0;
+  // Writes the step-start anchors and the rows' softness coefficients.
   virtual void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-                       const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
+                       const simd::SubstepContext& ctx) = 0;
   virtual void warm_start(const simd::BodyArrays& arrays) = 0;
   virtual void clear_impulses() = 0;
   virtual void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
@@ -82,7 +83,6 @@ class JointSolverBase {
 std::unique_ptr<JointSolverBase> make_joint_solver(SimdWidth width);
 SimdWidth best_simd_width();
 bool simd_width_supported(SimdWidth width);
-const char* simd_width_name(SimdWidth width);
 
 struct World::Impl {
   WorldSettings settings;

@@ -61,13 +61,17 @@ void GraphColoring::remove(std::uint32_t constraint) {
   --count_;
 }
 
-void GraphColoring::clear() { *this = GraphColoring{}; }
+void GraphColoring::clear() {
+  *this = GraphColoring{};
+}
 
 bool GraphColoring::contains(std::uint32_t constraint) const {
   return constraint < entries_.size() && entries_[constraint].color != kAbsent;
 }
 
-int GraphColoring::color_of(std::uint32_t constraint) const { return entries_[constraint].color; }
+int GraphColoring::color_of(std::uint32_t constraint) const {
+  return entries_[constraint].color;
+}
 
 ColoringStats GraphColoring::stats(int lane_width) const {
   ColoringStats s;
@@ -78,7 +82,8 @@ ColoringStats GraphColoring::stats(int lane_width) const {
     if (n == 0) continue;
     ++s.colors_used;
     colored += n;
-    s.lane_groups += (n + static_cast<std::uint32_t>(lane_width) - 1) / static_cast<std::uint32_t>(lane_width);
+    s.lane_groups +=
+        (n + static_cast<std::uint32_t>(lane_width) - 1) / static_cast<std::uint32_t>(lane_width);
   }
   s.overflow = static_cast<std::uint32_t>(overflow_.size());
   s.lane_fill = s.lane_groups == 0 ? 1.0

@@ -5,6 +5,12 @@
 
 namespace softstep {
 
+// Orientation at the API boundary. Unaligned on purpose: Eigen over-aligns Quaterniond by
+// the instruction set (16 bytes with SSE, 32 with AVX), so a program built without -march
+// and this library built with it would disagree on the layout of every struct holding one.
+// A plain Eigen::Quaterniond converts to and from it implicitly.
+using Quaternion = Eigen::Quaternion<double, Eigen::DontAlign>;
+
 enum class BodyType {
   Static,     // never moves, infinite mass
   Kinematic,  // moves with the velocity the user sets, infinite mass, feels no force
@@ -14,8 +20,8 @@ enum class BodyType {
 // Everything a body is. Units: SI (m, kg, s, rad).
 struct BodyDef {
   BodyType type = BodyType::Dynamic;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // centre of mass, world frame, m
-  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body to world, unit
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // centre of mass, world frame, m
+  Quaternion orientation = Quaternion::Identity();             // body to world, unit
   Eigen::Vector3d linear_velocity = Eigen::Vector3d::Zero();   // m/s
   Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, world frame
   double mass = 1.0;  // kg, > 0 for a dynamic body; ignored for static and kinematic

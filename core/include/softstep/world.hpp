@@ -18,11 +18,11 @@ namespace softstep {
 struct BodyState {
   BodyType type;
   Eigen::Vector3d position;
-  Eigen::Quaterniond orientation;
+  Quaternion orientation;
   Eigen::Vector3d linear_velocity;
   Eigen::Vector3d angular_velocity;
-  double mass;               // kg (0 for static and kinematic)
-  Eigen::Matrix3d inertia;   // body frame, kg m^2
+  double mass;              // kg (0 for static and kinematic)
+  Eigen::Matrix3d inertia;  // body frame, kg m^2
   double gravity_scale;
   double linear_damping;
   double angular_damping;
@@ -30,12 +30,12 @@ struct BodyState {
 
 // How the solver has laid out the joints (see graph_coloring/).
 struct SolverLayout {
-  SimdWidth simd;            // width in use (never Best)
-  int lanes;                 // 1, 4 or 8
+  SimdWidth simd;  // width in use (never Best)
+  int lanes;       // 1, 4 or 8
   int colors_used;
   std::vector<std::uint32_t> joints_per_color;
   std::uint32_t overflow_joints;
-  double lane_fill;          // real joints / lanes in coloured groups
+  double lane_fill;  // real joints / lanes in coloured groups
 };
 
 class World {
@@ -56,7 +56,7 @@ class World {
   bool is_valid(BodyId id) const;
   BodyState body(BodyId id) const;
   void set_position(BodyId id, const Eigen::Vector3d& position);
-  void set_orientation(BodyId id, const Eigen::Quaterniond& orientation);
+  void set_orientation(BodyId id, const Quaternion& orientation);
   void set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity);
   void set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity);
   void set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia);

@@ -12,9 +12,12 @@ enum class SimdWidth {
   Avx2,    // 8 lanes, AVX2
 };
 
+// "best", "scalar", "sse" or "avx2".
+const char* simd_width_name(SimdWidth width);
+
 struct WorldSettings {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
-  int substeps = 4;          // >= 1: sub-steps per step(dt), each a full solve
+  int substeps = 4;                          // >= 1: sub-steps per step(dt), each a full solve
   int relax_iterations = 1;  // >= 0: rigid, unbiased passes per sub-step after positions move
   int threads = 1;           // >= 1
   bool warm_start = true;    // start each sub-step from the previous sub-step's impulses

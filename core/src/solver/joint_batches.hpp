@@ -19,7 +19,7 @@ struct ColorBatches {
 // width's instruction set (see kernels_*.cpp). Each runs over every group of one colour.
 template <int W>
 struct KernelTable {
-  void (*prepare)(ColorBatches<W>&, const simd::BodyArrays&, const simd::SubstepContext&);
+  void (*prepare)(ColorBatches<W>&, const simd::SubstepContext&);
   void (*warm_start)(ColorBatches<W>&, const simd::BodyArrays&);
   void (*solve)(ColorBatches<W>&, const simd::BodyArrays&, const simd::SubstepContext&);
   void (*relax)(ColorBatches<W>&, const simd::BodyArrays&, const simd::SubstepContext&);

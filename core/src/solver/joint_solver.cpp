@@ -137,12 +137,12 @@ class JointSolver final : public JointSolverBase {
   }
 
   void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-               const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) override {
+               const simd::SubstepContext& ctx) override {
     for_each_lane([&](auto& group, int lane, std::uint32_t joint) {
       write_anchors(group, lane, joints[joint], bodies);
     });
-    for (auto& c : colors_) kernels_.prepare(c, arrays, ctx);
-    scalar_.prepare(overflow_, arrays, ctx);
+    for (auto& c : colors_) kernels_.prepare(c, ctx);
+    scalar_.prepare(overflow_, ctx);
   }
 
   void warm_start(const simd::BodyArrays& arrays) override {
@@ -175,7 +175,8 @@ class JointSolver final : public JointSolverBase {
                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                    bool overflow, std::uint32_t color) {
     std::vector<std::uint32_t> ball, distance;
-    for (std::uint32_t j : members) (joints[j].type == JointType::Ball ? ball : distance).push_back(j);
+    for (std::uint32_t j : members)
+      (joints[j].type == JointType::Ball ? ball : distance).push_back(j);
     const auto place = [&](auto& groups, const std::vector<std::uint32_t>& list, bool is_ball) {
       using Group = typename std::decay_t<decltype(groups)>::value_type;
       const auto lanes = graph_coloring::pack_lanes(list, V, kPadding);
@@ -252,20 +253,28 @@ SimdWidth best_simd_width() {
 
 const char* simd_width_name(SimdWidth width) {
   switch (width) {
-    case SimdWidth::Best: return "best";
-    case SimdWidth::Scalar: return "scalar";
-    case SimdWidth::Sse: return "sse";
-    case SimdWidth::Avx2: return "avx2";
+    case SimdWidth::Best:
+      return "best";
+    case SimdWidth::Scalar:
+      return "scalar";
+    case SimdWidth::Sse:
+      return "sse";
+    case SimdWidth::Avx2:
+      return "avx2";
   }
   return "?";
 }
 
 std::unique_ptr<JointSolverBase> make_joint_solver(SimdWidth width) {
   switch (width) {
-    case SimdWidth::Scalar: return std::make_unique<JointSolver<1>>(solver::scalar_kernels());
-    case SimdWidth::Sse: return std::make_unique<JointSolver<4>>(solver::sse_kernels());
-    case SimdWidth::Avx2: return std::make_unique<JointSolver<8>>(solver::avx2_kernels());
-    case SimdWidth::Best: break;
+    case SimdWidth::Scalar:
+      return std::make_unique<JointSolver<1>>(solver::scalar_kernels());
+    case SimdWidth::Sse:
+      return std::make_unique<JointSolver<4>>(solver::sse_kernels());
+    case SimdWidth::Avx2:
+      return std::make_unique<JointSolver<8>>(solver::avx2_kernels());
+    case SimdWidth::Best:
+      break;
   }
   throw std::logic_error("make_joint_solver: width must be resolved");
 }

@@ -11,9 +11,9 @@ template <class L>
 KernelTable<simd::kWidth<L>> make_kernel_table() {
   constexpr int W = simd::kWidth<L>;
   KernelTable<W> t;
-  t.prepare = [](ColorBatches<W>& c, const simd::BodyArrays& b, const simd::SubstepContext& ctx) {
-    for (auto& g : c.ball) simd::prepare_ball_joints<L>(g, b, ctx);
-    for (auto& g : c.distance) simd::prepare_distance_joints<L>(g, b, ctx);
+  t.prepare = [](ColorBatches<W>& c, const simd::SubstepContext& ctx) {
+    for (auto& g : c.ball) simd::prepare_ball_joints<L>(g, ctx);
+    for (auto& g : c.distance) simd::prepare_distance_joints<L>(g, ctx);
   };
   t.warm_start = [](ColorBatches<W>& c, const simd::BodyArrays& b) {
     for (auto& g : c.ball) simd::warm_start_ball_joints<L>(g, b);

@@ -1,5 +1,7 @@
 #include "solver/kernel_table.hpp"
 
 namespace softstep::solver {
-KernelTable<1> scalar_kernels() { return make_kernel_table<float>(); }
+KernelTable<1> scalar_kernels() {
+  return make_kernel_table<float>();
+}
 }  // namespace softstep::solver

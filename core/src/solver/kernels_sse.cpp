@@ -3,5 +3,7 @@
 
 namespace softstep::solver {
 using SseLane = xsimd::batch<float, xsimd::sse4_2>;
-KernelTable<4> sse_kernels() { return make_kernel_table<SseLane>(); }
+KernelTable<4> sse_kernels() {
+  return make_kernel_table<SseLane>();
+}
 }  // namespace softstep::solver

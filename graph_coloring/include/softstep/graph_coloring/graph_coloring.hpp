@@ -27,11 +27,11 @@ inline constexpr int kOverflow = -1;
 inline constexpr std::uint32_t kNonBlocking = 0xFFFFFFFFu;
 
 struct ColoringStats {
-  int colors_used = 0;                           // colours holding at least one constraint
+  int colors_used = 0;                                 // colours holding at least one constraint
   std::array<std::uint32_t, kColorCount> per_color{};  // constraints in each colour
-  std::uint32_t overflow = 0;                     // constraints in the overflow set
-  std::uint32_t lane_groups = 0;                  // groups of `width` lanes over all colours
-  double lane_fill = 0.0;                         // coloured constraints / (lane_groups * width)
+  std::uint32_t overflow = 0;                          // constraints in the overflow set
+  std::uint32_t lane_groups = 0;                       // groups of `width` lanes over all colours
+  double lane_fill = 0.0;  // coloured constraints / (lane_groups * width)
 };
 
 class GraphColoring {

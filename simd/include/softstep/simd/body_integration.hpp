@@ -10,9 +10,9 @@ namespace softstep::simd {
 // Forces a body feels during a step, precomputed so that a body with none costs nothing
 // beyond being skipped (core does not list it for this pass).
 struct alignas(32) ForceRecord {
-  float gravity[3];           // m/s^2, world gravity times the body's gravity scale
-  float linear_damping;       // 1/(1 + h c_linear), 1 = none
-  float angular_damping;      // 1/(1 + h c_angular), 1 = none
+  float gravity[3];       // m/s^2, world gravity times the body's gravity scale
+  float linear_damping;   // 1/(1 + h c_linear), 1 = none
+  float angular_damping;  // 1/(1 + h c_angular), 1 = none
   float unused[3];
 };
 

@@ -38,7 +38,8 @@ struct alignas(32) MassRecord {
   float unused;
 };
 
-static_assert(sizeof(VelocityRecord) == 32 && sizeof(DeltaRecord) == 32 && sizeof(MassRecord) == 32);
+static_assert(sizeof(VelocityRecord) == 32 && sizeof(DeltaRecord) == 32 &&
+              sizeof(MassRecord) == 32);
 
 inline constexpr std::int32_t kDummyBody = 0;
 
@@ -128,7 +129,8 @@ inline BodyLanes<L> gather_body(const VelocityRecord* vel, const DeltaRecord* de
 }
 
 template <class L>
-inline void scatter_velocity(VelocityRecord* vel, const std::int32_t* index, const BodyLanes<L>& b) {
+inline void scatter_velocity(VelocityRecord* vel, const std::int32_t* index,
+                             const BodyLanes<L>& b) {
   Rows8<L> rows{{b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, L(0.0f), L(0.0f)}};
   scatter_rows<L>(vel, index, rows, 6, b.movable);
 }

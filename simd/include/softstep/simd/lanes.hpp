@@ -44,7 +44,9 @@ using MaskOf = typename LaneTraits<L>::Mask;
 
 // ---- scalar lane -------------------------------------------------------------------------
 
-inline void store_lanes(float* p, float v) { *p = v; }
+inline void store_lanes(float* p, float v) {
+  *p = v;
+}
 inline float fmadd(float a, float b, float c) {
 #if SOFTSTEP_USE_FMA
   return std::fma(a, b, c);
@@ -52,12 +54,24 @@ inline float fmadd(float a, float b, float c) {
   return a * b + c;
 #endif
 }
-inline float select(bool m, float a, float b) { return m ? a : b; }
-inline float min_lanes(float a, float b) { return a < b ? a : b; }
-inline float max_lanes(float a, float b) { return a > b ? a : b; }
-inline float sqrt_lanes(float a) { return std::sqrt(a); }
-inline float abs_lanes(float a) { return std::fabs(a); }
-inline float lane(float v, int) { return v; }
+inline float select(bool m, float a, float b) {
+  return m ? a : b;
+}
+inline float min_lanes(float a, float b) {
+  return a < b ? a : b;
+}
+inline float max_lanes(float a, float b) {
+  return a > b ? a : b;
+}
+inline float sqrt_lanes(float a) {
+  return std::sqrt(a);
+}
+inline float abs_lanes(float a) {
+  return std::fabs(a);
+}
+inline float lane(float v, int) {
+  return v;
+}
 
 // ---- batch lanes -------------------------------------------------------------------------
 
@@ -69,7 +83,8 @@ inline void store_lanes(float* p, const xsimd::batch<float, A>& v) {
 // FMA only as fma3<sse4_2>, which it disables whenever AVX is on (and gcc's -mfma implies
 // AVX), and its plain avx2 arch splits fma into a multiply and an add.
 template <class A>
-inline xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a, const xsimd::batch<float, A>& b,
+inline xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a,
+                                    const xsimd::batch<float, A>& b,
                                     const xsimd::batch<float, A>& c) {
 #if SOFTSTEP_USE_FMA
   if constexpr (xsimd::batch<float, A>::size == 8) {

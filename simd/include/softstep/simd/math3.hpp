@@ -71,9 +71,9 @@ inline Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const Vec3<L>& r
   // With S = skew(r) (S p = r x p), the anchor velocity an impulse p causes through rotation
   // is -r x I (r x p) = S^T I S p. Entry (i, j) is (S e_i) . I (S e_j): symmetric by
   // construction, so only six dot products are formed.
-  const Vec3<L> c0 = inv_i * Vec3<L>{L(0.0f), r.z, L(0.0f) - r.y};        // I * (S e_x)
-  const Vec3<L> c1 = inv_i * Vec3<L>{L(0.0f) - r.z, L(0.0f), r.x};        // I * (S e_y)
-  const Vec3<L> c2 = inv_i * Vec3<L>{r.y, L(0.0f) - r.x, L(0.0f)};        // I * (S e_z)
+  const Vec3<L> c0 = inv_i * Vec3<L>{L(0.0f), r.z, L(0.0f) - r.y};  // I * (S e_x)
+  const Vec3<L> c1 = inv_i * Vec3<L>{L(0.0f) - r.z, L(0.0f), r.x};  // I * (S e_y)
+  const Vec3<L> c2 = inv_i * Vec3<L>{r.y, L(0.0f) - r.x, L(0.0f)};  // I * (S e_z)
   // (S^T A)_ij = (S e_i) . (A e_j) with S e_x = (0, z, -y), S e_y = (-z, 0, x), S e_z = (y, -x, 0)
   const Vec3<L> s0{L(0.0f), r.z, L(0.0f) - r.y};
   const Vec3<L> s1{L(0.0f) - r.z, L(0.0f), r.x};

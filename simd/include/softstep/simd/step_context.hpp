@@ -1,6 +1,8 @@
 // What every kernel of one sub-step needs to know besides its own lanes and the bodies.
 #pragma once
 
+#include <limits>
+
 #include "softstep/simd/body_records.hpp"
 #include "softstep/simd/softness.hpp"
 
@@ -13,8 +15,8 @@ struct BodyArrays {
 };
 
 struct SubstepContext {
-  float h;       // sub-step, s
-  float inv_h;   // 1/h
+  float h;      // sub-step, s
+  float inv_h;  // 1/h
   // Softness of rigid rows while solving (rigid rows use none while relaxing): a stiff spring
   // whose frequency is capped by the sub-step rate so it cannot overshoot.
   Softness<float> rigid;

@@ -1,0 +1,96 @@
+#include "tool/arguments.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace softstep::tool {
+
+Arguments::Arguments(std::span<char* const> args)
+    : words_(args.begin(), args.end()), used_(words_.size(), false) {}
+
+std::vector<std::string> Arguments::take_positionals() {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < words_.size() && words_[i].rfind("--", 0) != 0; ++i) {
+    if (used_[i]) continue;
+    out.push_back(words_[i]);
+    used_[i] = true;
+  }
+  return out;
+}
+
+int Arguments::find(const std::string& flag) const {
+  for (std::size_t i = 0; i < words_.size(); ++i) {
+    if (!used_[i] && words_[i] == flag) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+bool Arguments::has(const std::string& flag) const {
+  return find(flag) >= 0;
+}
+
+bool Arguments::take_switch(const std::string& flag) {
+  const int i = find(flag);
+  if (i < 0) return false;
+  used_[static_cast<std::size_t>(i)] = true;
+  return true;
+}
+
+std::string Arguments::value_of(const std::string& flag) {
+  const int i = find(flag);
+  const auto at = static_cast<std::size_t>(i);
+  if (at + 1 >= words_.size() || words_[at + 1].rfind("--", 0) == 0) {
+    throw UsageError(flag + " needs a value");
+  }
+  used_[at] = used_[at + 1] = true;
+  return words_[at + 1];
+}
+
+std::string Arguments::take_string(const std::string& flag, const std::string& fallback) {
+  return has(flag) ? value_of(flag) : fallback;
+}
+
+std::string Arguments::take_choice(const std::string& flag, const std::vector<std::string>& choices,
+                                   const std::string& fallback) {
+  const std::string v = take_string(flag, fallback);
+  for (const auto& c : choices) {
+    if (c == v) return v;
+  }
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : "|") + c;
+  throw UsageError(flag + " " + v + ": expected one of " + list);
+}
+
+long Arguments::take_int(const std::string& flag, long fallback, long min, long max) {
+  if (!has(flag)) return fallback;
+  const std::string v = value_of(flag);
+  char* end = nullptr;
+  errno = 0;
+  const long n = std::strtol(v.c_str(), &end, 10);
+  if (errno != 0 || end == v.c_str() || *end != '\0' || n < min || n > max) {
+    throw UsageError(flag + " " + v + ": expected a whole number in [" + std::to_string(min) +
+                     ", " + std::to_string(max) + "]");
+  }
+  return n;
+}
+
+double Arguments::take_double(const std::string& flag, double fallback, double min, double max) {
+  if (!has(flag)) return fallback;
+  const std::string v = value_of(flag);
+  char* end = nullptr;
+  const double x = std::strtod(v.c_str(), &end);
+  if (end == v.c_str() || *end != '\0' || !std::isfinite(x) || x < min || x > max) {
+    throw UsageError(flag + " " + v + ": expected a number in [" + std::to_string(min) + ", " +
+                     std::to_string(max) + "]");
+  }
+  return x;
+}
+
+void Arguments::reject_leftovers() const {
+  for (std::size_t i = 0; i < words_.size(); ++i) {
+    if (!used_[i]) throw UsageError("unknown argument " + words_[i]);
+  }
+}
+
+}  // namespace softstep::tool

@@ -1,0 +1,11 @@
+#pragma once
+
+#include "tool/arguments.hpp"
+
+namespace softstep::tool {
+
+// softstep profile [chain] --links N --chains M ... : runs a scene and reports its cost.
+int profile_command(Arguments& args);
+extern const char* const kProfileUsage;
+
+}  // namespace softstep::tool

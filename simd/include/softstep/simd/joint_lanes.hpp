@@ -1,0 +1,104 @@
+// What every two-body joint kernel shares: the lanes that name the bodies, the anchors and
+// the spring, the per-step row coefficients, and the gather of both bodies with the anchors
+// turned to where the bodies are now.
+#pragma once
+
+#include <cstdint>
+
+#include "softstep/simd/step_context.hpp"
+
+namespace softstep::simd {
+
+template <int W>
+struct alignas(32) JointLanes {
+  std::int32_t body_a[W];
+  std::int32_t body_b[W];
+  // Written before prepare each step (core's anchor pass), world frame, at the step start:
+  float r_a[3][W];           // anchor A - centre of mass A, m
+  float r_b[3][W];           // anchor B - centre of mass B, m
+  float center_delta[3][W];  // centre B - centre A, m (from double positions: precise far out)
+  // Spring, constant while the joint lives: hertz +inf = rigid, 0 = free.
+  float hertz[W];
+  float zeta[W];
+  // Prepared once per step (prepare_row_coefficients):
+  float bias_rate[W];
+  float mass_scale[W];
+  float impulse_scale[W];
+  float max_bias[W];     // m/s, +inf for springs
+  float relax_scale[W];  // 1 for rigid rows, 0 for springs (springs are not relaxed)
+};
+
+template <class L, int W>
+inline void prepare_row_coefficients(JointLanes<W>& g, const SubstepContext& ctx) {
+  const L hertz = load<L>(g.hertz);
+  const auto rigid = hertz == L(kRigidHertz);
+  const Softness<L> spring = make_softness(select(rigid, L(0.0f), hertz), load<L>(g.zeta), ctx.h);
+  store_lanes(g.bias_rate, select(rigid, L(ctx.rigid.bias_rate), spring.bias_rate));
+  store_lanes(g.mass_scale, select(rigid, L(ctx.rigid.mass_scale), spring.mass_scale));
+  store_lanes(g.impulse_scale, select(rigid, L(ctx.rigid.impulse_scale), spring.impulse_scale));
+  store_lanes(g.max_bias, select(rigid, L(ctx.max_correction_speed),
+                                 L(std::numeric_limits<float>::infinity())));
+  store_lanes(g.relax_scale, select(rigid, L(1.0f), L(0.0f)));
+}
+
+template <class L>
+inline Vec3<L> load3(const float (&a)[3][kWidth<L>]) {
+  return {load<L>(a[0]), load<L>(a[1]), load<L>(a[2])};
+}
+template <class L>
+inline void store3(float (&a)[3][kWidth<L>], const Vec3<L>& v) {
+  store_lanes(a[0], v.x);
+  store_lanes(a[1], v.y);
+  store_lanes(a[2], v.z);
+}
+
+// Both bodies of W joints as they are now, with the anchors rotated by each body's rotation
+// since the step start and the anchor separation (anchor B - anchor A).
+template <class L>
+struct JointBodies {
+  BodyLanes<L> a, b;
+  Vec3<L> r_a, r_b;
+  Vec3<L> separation;
+};
+
+template <class L>
+inline JointBodies<L> gather_joint(const JointLanes<kWidth<L>>& g, const BodyArrays& bodies) {
+  JointBodies<L> j{gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_a),
+                   gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_b),
+                   {},
+                   {},
+                   {}};
+  j.r_a = rotate(j.a.dq, load3<L>(g.r_a));
+  j.r_b = rotate(j.b.dq, load3<L>(g.r_b));
+  j.separation = load3<L>(g.center_delta) + (j.b.dp - j.a.dp) + (j.r_b - j.r_a);
+  return j;
+}
+
+template <class L>
+inline void scatter_joint(const JointLanes<kWidth<L>>& g, const BodyArrays& bodies,
+                          const JointBodies<L>& j) {
+  scatter_velocity(bodies.velocity, g.body_a, j.a);
+  scatter_velocity(bodies.velocity, g.body_b, j.b);
+}
+
+// Impulse p on B at its anchor, -p on A at its anchor.
+template <class L>
+inline void apply_impulse(JointBodies<L>& j, const Vec3<L>& p) {
+  j.a.v = mul_add(L(0.0f) - j.a.inv_mass, p, j.a.v);
+  j.a.w = j.a.w - j.a.inv_inertia * cross(j.r_a, p);
+  j.b.v = mul_add(j.b.inv_mass, p, j.b.v);
+  j.b.w = j.b.w + j.b.inv_inertia * cross(j.r_b, p);
+}
+
+// Velocity of anchor B relative to anchor A: J v of the three point rows.
+template <class L>
+inline Vec3<L> relative_velocity(const JointBodies<L>& j) {
+  return (j.b.v + cross(j.b.w, j.r_b)) - (j.a.v + cross(j.a.w, j.r_a));
+}
+
+template <class L>
+inline L clamp_lanes(const L& v, const L& bound) {
+  return min_lanes(max_lanes(v, L(0.0f) - bound), bound);
+}
+
+}  // namespace softstep::simd
