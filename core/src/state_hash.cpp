@@ -81,7 +81,7 @@ std::uint64_t World::state_hash() const {
     h.value(j.rest_length);
     h.value(j.min_length);
     h.value(j.max_length);
-    h.matrix(w.joints_packed ? w.joint_solver->impulse(slot) : j.impulse);
+    h.matrix(w.joints_packed ? w.lane_solver->impulse(slot) : j.impulse);
   }
   for (std::uint32_t f : w.free_bodies) h.value(f);
   for (std::uint32_t f : w.free_joints) h.value(f);

@@ -29,7 +29,7 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
 
 void World::Impl::prepare_bodies(float h) {
   SolverBodies& sb = solver_bodies;
-  const std::size_t records = bodies.size() + 1;
+  const std::size_t records = (bodies.size() + 1 + 7) / 8 * 8;
   if (!bodies_listed || sb.velocity.size() != records) {
     sb.velocity.assign(records, simd::VelocityRecord{});
     sb.delta.assign(records, simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0});
@@ -72,18 +72,6 @@ void World::Impl::prepare_bodies(float h) {
   }
 }
 
-void World::Impl::integrate_velocities(float h) {
-  SolverBodies& sb = solver_bodies;
-  for (std::uint32_t s : sb.movable)
-    simd::integrate_velocity(sb.velocity[s + 1], sb.force[s + 1], h);
-}
-
-void World::Impl::integrate_positions(float h) {
-  SolverBodies& sb = solver_bodies;
-  for (std::uint32_t s : sb.movable)
-    simd::integrate_position(sb.delta[s + 1], sb.velocity[s + 1], h);
-}
-
 void World::Impl::finalize_bodies() {
   SolverBodies& sb = solver_bodies;
   for (std::uint32_t s : sb.movable) {
@@ -109,28 +97,28 @@ void World::step(double dt) {
     validation::reject("step", "dt", validation::format(dt), "dt / substeps underflows float");
   }
   if (!w.joints_packed) {
-    w.joint_solver->pack(w.coloring, w.joints, w.bodies);
+    w.lane_solver->pack(w.coloring, w.joints, w.bodies);
     w.joints_packed = true;
   }
   const simd::SubstepContext ctx = make_context(s, h);
   w.prepare_bodies(h);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
-  JointSolverBase& joints = *w.joint_solver;
+  LaneSolver& solver = *w.lane_solver;
   const bool has_joints = w.joint_count > 0;
-  if (has_joints) joints.prepare(w.joints, w.bodies, ctx);
+  if (has_joints) solver.prepare(w.joints, w.bodies, ctx);
   for (int sub = 0; sub < s.substeps; ++sub) {
-    w.integrate_velocities(h);
+    solver.integrate_velocities(w.solver_bodies, h);
     if (has_joints) {
       if (s.warm_start) {
-        joints.warm_start(arrays);
+        solver.warm_start(arrays);
       } else {
-        joints.clear_impulses();
+        solver.clear_impulses();
       }
-      joints.solve(arrays, ctx);
+      solver.solve(arrays, ctx);
     }
-    w.integrate_positions(h);
+    solver.integrate_positions(w.solver_bodies, h);
     if (has_joints) {
-      for (int r = 0; r < s.relax_iterations; ++r) joints.relax(arrays, ctx);
+      for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx);
     }
   }
   w.finalize_bodies();
@@ -139,7 +127,7 @@ void World::step(double dt) {
 
 SolverLayout World::solver_layout() const {
   const Impl& w = *impl_;
-  const int lanes = w.joint_solver->lanes();
+  const int lanes = w.lane_solver->lanes();
   const graph_coloring::ColoringStats stats = w.coloring.stats(lanes);
   SolverLayout layout;
   layout.simd = w.width;

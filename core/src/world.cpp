@@ -69,7 +69,7 @@ static std::uint32_t take_slot(std::vector<Slot>& slots, std::vector<std::uint32
 }
 
 void World::Impl::unpack_joints() {
-  if (joints_packed && joint_solver) joint_solver->save_impulses(joints);
+  if (joints_packed && lane_solver) lane_solver->save_impulses(joints);
   joints_packed = false;
 }
 
@@ -79,7 +79,7 @@ World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
   validation::settings("World", settings);
   impl_->width = resolve_width("World", settings.simd);
   impl_->settings = settings;
-  impl_->joint_solver = make_joint_solver(impl_->width);
+  impl_->lane_solver = make_lane_solver(impl_->width);
 }
 
 World::~World() = default;
@@ -96,7 +96,7 @@ void World::set_settings(const WorldSettings& settings) {
   Impl& w = *impl_;
   if (width != w.width) {
     w.unpack_joints();
-    w.joint_solver = make_joint_solver(width);
+    w.lane_solver = make_lane_solver(width);
     w.width = width;
   }
   w.settings = settings;
@@ -335,7 +335,7 @@ JointReading World::joint_reading(JointId id) const {
   const Eigen::Vector3d anchor_a = a.position + a.orientation * j.local_anchor_a;
   const Eigen::Vector3d anchor_b = b.position + b.orientation * j.local_anchor_b;
   const Eigen::Vector3d d = anchor_b - anchor_a;
-  const Eigen::Vector3f stored = w.joints_packed ? w.joint_solver->impulse(id.index) : j.impulse;
+  const Eigen::Vector3f stored = w.joints_packed ? w.lane_solver->impulse(id.index) : j.impulse;
   JointReading r;
   if (j.type == JointType::Ball) {
     r.impulse = stored.cast<double>();

@@ -57,13 +57,16 @@ struct SolverBodies {
   std::vector<simd::MassRecord> mass;
   std::vector<simd::ForceRecord> force;
   std::vector<std::uint32_t> movable;  // slots of dynamic and kinematic bodies, in slot order
+  // Records in use, rounded up to a multiple of the widest lane group (8): integration runs
+  // over all of them in whole groups.
+  std::int32_t padded_count() const { return static_cast<std::int32_t>(velocity.size()); }
   simd::BodyArrays arrays() { return {velocity.data(), delta.data(), mass.data()}; }
 };
 
-// The joints of one lane width in coloured batches; see joint_solver.hpp.
-class JointSolverBase {
+// The joints of one lane width in coloured batches; see lane_solver.hpp.
+class LaneSolver {
  public:
-  virtual ~JointSolverBase() = default;
+  virtual ~LaneSolver() = default;
   virtual int lanes() const = 0;
   // Lays out all joints from the colouring; impulses come from the slots.
   virtual void pack(const graph_coloring::GraphColoring& coloring,
@@ -78,9 +81,11 @@ class JointSolverBase {
   virtual void clear_impulses() = 0;
   virtual void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
+  virtual void integrate_velocities(SolverBodies& bodies, float h) = 0;
+  virtual void integrate_positions(SolverBodies& bodies, float h) = 0;
 };
 
-std::unique_ptr<JointSolverBase> make_joint_solver(SimdWidth width);
+std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
 SimdWidth best_simd_width();
 bool simd_width_supported(SimdWidth width);
 
@@ -95,7 +100,7 @@ struct World::Impl {
 
   graph_coloring::GraphColoring coloring;
   SimdWidth width = SimdWidth::Scalar;  // resolved, never Best
-  std::unique_ptr<JointSolverBase> joint_solver;
+  std::unique_ptr<LaneSolver> lane_solver;
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;
@@ -104,8 +109,6 @@ struct World::Impl {
   void unpack_joints();  // save impulses to slots and mark for re-pack
   void prepare_bodies(float h);
   void finalize_bodies();
-  void integrate_velocities(float h);
-  void integrate_positions(float h);
 };
 
 }  // namespace softstep

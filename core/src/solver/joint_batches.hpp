@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "softstep/simd/ball_joint_kernel.hpp"
+#include "softstep/simd/body_integration.hpp"
 #include "softstep/simd/distance_joint_kernel.hpp"
 
 namespace softstep::solver {
@@ -23,6 +24,11 @@ struct KernelTable {
   void (*warm_start)(ColorBatches<W>&, const simd::BodyArrays&);
   void (*solve)(ColorBatches<W>&, const simd::BodyArrays&, const simd::SubstepContext&);
   void (*relax)(ColorBatches<W>&, const simd::BodyArrays&, const simd::SubstepContext&);
+  // Bodies [0, count): count is a multiple of W (the record arrays are padded).
+  void (*integrate_velocities)(simd::VelocityRecord*, const simd::ForceRecord*, std::int32_t count,
+                               float h);
+  void (*integrate_positions)(simd::DeltaRecord*, const simd::VelocityRecord*, std::int32_t count,
+                              float h);
 };
 
 KernelTable<1> scalar_kernels();

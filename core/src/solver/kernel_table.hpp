@@ -27,6 +27,14 @@ KernelTable<simd::kWidth<L>> make_kernel_table() {
     for (auto& g : c.ball) simd::solve_ball_joints<L, false>(g, b);
     for (auto& g : c.distance) simd::solve_distance_joints<L, false>(g, b, ctx);
   };
+  t.integrate_velocities = [](simd::VelocityRecord* v, const simd::ForceRecord* f,
+                              std::int32_t count, float h) {
+    for (std::int32_t i = 0; i < count; i += W) simd::integrate_velocities<L>(v, f, i, h);
+  };
+  t.integrate_positions = [](simd::DeltaRecord* d, const simd::VelocityRecord* v,
+                             std::int32_t count, float h) {
+    for (std::int32_t i = 0; i < count; i += W) simd::integrate_positions<L>(d, v, i, h);
+  };
   return t;
 }
 

@@ -20,9 +20,11 @@ struct alignas(32) BallJointGroup : JointLanes<W> {
 
 // K^-1 with K = (m_A^-1 + m_B^-1) 1 + S(r_A)^T I_A^-1 S(r_A) + S(r_B)^T I_B^-1 S(r_B).
 template <class L>
-inline Mat3Sym<L> inverse_effective_mass(const L& inv_mass_a, const Mat3Sym<L>& inv_inertia_a,
-                                         const Vec3<L>& r_a, const L& inv_mass_b,
-                                         const Mat3Sym<L>& inv_inertia_b, const Vec3<L>& r_b) {
+SOFTSTEP_INLINE Mat3Sym<L> inverse_effective_mass(const L& inv_mass_a,
+                                                  const Mat3Sym<L>& inv_inertia_a,
+                                                  const Vec3<L>& r_a, const L& inv_mass_b,
+                                                  const Mat3Sym<L>& inv_inertia_b,
+                                                  const Vec3<L>& r_b) {
   const L m_sum = inv_mass_a + inv_mass_b;
   const Mat3Sym<L> k = Mat3Sym<L>{m_sum, m_sum, m_sum, L(0.0f), L(0.0f), L(0.0f)} +
                        rotational_mass_term(inv_inertia_a, r_a) +
@@ -31,12 +33,13 @@ inline Mat3Sym<L> inverse_effective_mass(const L& inv_mass_a, const Mat3Sym<L>& 
 }
 
 template <class L>
-inline void prepare_ball_joints(BallJointGroup<kWidth<L>>& g, const SubstepContext& ctx) {
+SOFTSTEP_INLINE void prepare_ball_joints(BallJointGroup<kWidth<L>>& g, const SubstepContext& ctx) {
   prepare_row_coefficients<L>(g, ctx);
 }
 
 template <class L>
-inline void warm_start_ball_joints(BallJointGroup<kWidth<L>>& g, const BodyArrays& bodies) {
+SOFTSTEP_INLINE void warm_start_ball_joints(BallJointGroup<kWidth<L>>& g,
+                                            const BodyArrays& bodies) {
   JointBodies<L> j = gather_joint<L>(g, bodies);
   apply_impulse(j, load3<L>(g.impulse));
   scatter_joint(g, bodies, j);
@@ -45,7 +48,7 @@ inline void warm_start_ball_joints(BallJointGroup<kWidth<L>>& g, const BodyArray
 // kUseBias = true: the soft, biased solve. false: the rigid relax pass (no bias, springs
 // untouched: a spring's one soft solve per sub-step is exactly implicit Euler, talk 2:3:2).
 template <class L, bool kUseBias>
-inline void solve_ball_joints(BallJointGroup<kWidth<L>>& g, const BodyArrays& bodies) {
+SOFTSTEP_INLINE void solve_ball_joints(BallJointGroup<kWidth<L>>& g, const BodyArrays& bodies) {
   JointBodies<L> j = gather_joint<L>(g, bodies);
   const Mat3Sym<L> k_inv = inverse_effective_mass(j.a.inv_mass, j.a.inv_inertia, j.r_a,
                                                   j.b.inv_mass, j.b.inv_inertia, j.r_b);

@@ -16,21 +16,39 @@ struct alignas(32) ForceRecord {
   float unused[3];
 };
 
-inline void integrate_velocity(VelocityRecord& b, const ForceRecord& f, float h) {
+// Bodies [first, first + W) at once: records are contiguous, so the "gather" is W aligned
+// loads and a transpose. Callers pass whole blocks; slots of static bodies and free slots hold
+// zero velocity and an identity rotation, which integrate to themselves exactly.
+template <class L>
+SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceRecord* force,
+                                          std::int32_t first, float h) {
+  std::int32_t index[kWidth<L>];
+  for (int i = 0; i < kWidth<L>; ++i) index[i] = first + i;
+  Rows8<L> v = gather_rows<L>(velocity, index);
+  const Rows8<L> f = gather_rows<L>(force, index);
   for (int k = 0; k < 3; ++k) {
-    b.v[k] = fmadd(h, f.gravity[k], b.v[k]) * f.linear_damping;
-    b.w[k] = b.w[k] * f.angular_damping;
+    v.r[k] = fmadd(L(h), f.r[k], v.r[k]) * f.r[3];
+    v.r[k + 3] = v.r[k + 3] * f.r[4];
   }
+  scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));
 }
 
-inline void integrate_position(DeltaRecord& d, const VelocityRecord& b, float h) {
-  for (int k = 0; k < 3; ++k) d.dp[k] = fmadd(h, b.v[k], d.dp[k]);
-  const Quat<float> q = integrate_rotation(Quat<float>{d.dq[0], d.dq[1], d.dq[2], d.dq[3]},
-                                           Vec3<float>{b.w[0], b.w[1], b.w[2]}, h);
-  d.dq[0] = q.x;
-  d.dq[1] = q.y;
-  d.dq[2] = q.z;
-  d.dq[3] = q.w;
+template <class L>
+SOFTSTEP_INLINE void integrate_positions(DeltaRecord* delta, const VelocityRecord* velocity,
+                                         std::int32_t first, float h) {
+  std::int32_t index[kWidth<L>];
+  for (int i = 0; i < kWidth<L>; ++i) index[i] = first + i;
+  const Rows8<L> v = gather_rows<L>(velocity, index);
+  Rows8<L> d = gather_rows<L>(delta, index);
+  const L hl(h);
+  for (int k = 0; k < 3; ++k) d.r[k] = fmadd(hl, v.r[k], d.r[k]);
+  const Quat<L> q = integrate_rotation(Quat<L>{d.r[3], d.r[4], d.r[5], d.r[6]},
+                                       Vec3<L>{v.r[3], v.r[4], v.r[5]}, hl);
+  d.r[3] = q.x;
+  d.r[4] = q.y;
+  d.r[5] = q.z;
+  d.r[6] = q.w;
+  scatter_rows<L>(delta, index, d, L(0.0f) == L(0.0f));
 }
 
 }  // namespace softstep::simd

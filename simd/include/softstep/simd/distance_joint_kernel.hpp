@@ -25,9 +25,10 @@ struct alignas(32) DistanceJointGroup : JointLanes<W> {
 
 // 1 / (J M^-1 J^T) along the unit axis n (0 when neither body can move along it).
 template <class L>
-inline L axial_mass(const L& inv_mass_a, const Mat3Sym<L>& inv_inertia_a, const Vec3<L>& r_a,
-                    const L& inv_mass_b, const Mat3Sym<L>& inv_inertia_b, const Vec3<L>& r_b,
-                    const Vec3<L>& n) {
+SOFTSTEP_INLINE L axial_mass(const L& inv_mass_a, const Mat3Sym<L>& inv_inertia_a,
+                             const Vec3<L>& r_a, const L& inv_mass_b,
+                             const Mat3Sym<L>& inv_inertia_b, const Vec3<L>& r_b,
+                             const Vec3<L>& n) {
   const Vec3<L> ran = cross(r_a, n);
   const Vec3<L> rbn = cross(r_b, n);
   const L k =
@@ -40,7 +41,7 @@ namespace detail {
 inline constexpr float kMinAxisLength = 1.0e-6f;  // m: below it the axis is undefined
 
 template <class L>
-inline Vec3<L> normalize_or_zero(const Vec3<L>& d, L& length) {
+SOFTSTEP_INLINE Vec3<L> normalize_or_zero(const Vec3<L>& d, L& length) {
   length = sqrt_lanes(dot(d, d));
   const auto ok = length > L(kMinAxisLength);
   const L inv = select(ok, L(1.0f) / select(ok, length, L(1.0f)), L(0.0f));
@@ -51,9 +52,9 @@ inline Vec3<L> normalize_or_zero(const Vec3<L>& d, L& length) {
 // contact (C > 0) it is speculative: the gap may close within one sub-step but not beyond,
 // in solve and relax alike.
 template <class L, bool kUseBias>
-inline void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const L& sign, const L& c,
-                            const L& axial, const float* enabled, float* accumulated_lanes,
-                            const SubstepContext& ctx) {
+SOFTSTEP_INLINE void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const L& sign, const L& c,
+                                     const L& axial, const float* enabled, float* accumulated_lanes,
+                                     const SubstepContext& ctx) {
   const L cdot = sign * dot(n, relative_velocity(j));
   const L accumulated = load<L>(accumulated_lanes);
   const auto ahead = c > L(0.0f);
@@ -77,12 +78,14 @@ inline void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const L& sign, 
 }  // namespace detail
 
 template <class L>
-inline void prepare_distance_joints(DistanceJointGroup<kWidth<L>>& g, const SubstepContext& ctx) {
+SOFTSTEP_INLINE void prepare_distance_joints(DistanceJointGroup<kWidth<L>>& g,
+                                             const SubstepContext& ctx) {
   prepare_row_coefficients<L>(g, ctx);
 }
 
 template <class L>
-inline void warm_start_distance_joints(DistanceJointGroup<kWidth<L>>& g, const BodyArrays& bodies) {
+SOFTSTEP_INLINE void warm_start_distance_joints(DistanceJointGroup<kWidth<L>>& g,
+                                                const BodyArrays& bodies) {
   JointBodies<L> j = gather_joint<L>(g, bodies);
   L length;
   const Vec3<L> n = detail::normalize_or_zero(j.separation, length);
@@ -92,8 +95,8 @@ inline void warm_start_distance_joints(DistanceJointGroup<kWidth<L>>& g, const B
 }
 
 template <class L, bool kUseBias>
-inline void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g, const BodyArrays& bodies,
-                                  const SubstepContext& ctx) {
+SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
+                                           const BodyArrays& bodies, const SubstepContext& ctx) {
   JointBodies<L> j = gather_joint<L>(g, bodies);
   L length;
   const Vec3<L> n = detail::normalize_or_zero(j.separation, length);

@@ -29,7 +29,7 @@ struct alignas(32) JointLanes {
 };
 
 template <class L, int W>
-inline void prepare_row_coefficients(JointLanes<W>& g, const SubstepContext& ctx) {
+SOFTSTEP_INLINE void prepare_row_coefficients(JointLanes<W>& g, const SubstepContext& ctx) {
   const L hertz = load<L>(g.hertz);
   const auto rigid = hertz == L(kRigidHertz);
   const Softness<L> spring = make_softness(select(rigid, L(0.0f), hertz), load<L>(g.zeta), ctx.h);
@@ -42,11 +42,11 @@ inline void prepare_row_coefficients(JointLanes<W>& g, const SubstepContext& ctx
 }
 
 template <class L>
-inline Vec3<L> load3(const float (&a)[3][kWidth<L>]) {
+SOFTSTEP_INLINE Vec3<L> load3(const float (&a)[3][kWidth<L>]) {
   return {load<L>(a[0]), load<L>(a[1]), load<L>(a[2])};
 }
 template <class L>
-inline void store3(float (&a)[3][kWidth<L>], const Vec3<L>& v) {
+SOFTSTEP_INLINE void store3(float (&a)[3][kWidth<L>], const Vec3<L>& v) {
   store_lanes(a[0], v.x);
   store_lanes(a[1], v.y);
   store_lanes(a[2], v.z);
@@ -62,7 +62,8 @@ struct JointBodies {
 };
 
 template <class L>
-inline JointBodies<L> gather_joint(const JointLanes<kWidth<L>>& g, const BodyArrays& bodies) {
+SOFTSTEP_INLINE JointBodies<L> gather_joint(const JointLanes<kWidth<L>>& g,
+                                            const BodyArrays& bodies) {
   JointBodies<L> j{gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_a),
                    gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_b),
                    {},
@@ -75,15 +76,15 @@ inline JointBodies<L> gather_joint(const JointLanes<kWidth<L>>& g, const BodyArr
 }
 
 template <class L>
-inline void scatter_joint(const JointLanes<kWidth<L>>& g, const BodyArrays& bodies,
-                          const JointBodies<L>& j) {
+SOFTSTEP_INLINE void scatter_joint(const JointLanes<kWidth<L>>& g, const BodyArrays& bodies,
+                                   const JointBodies<L>& j) {
   scatter_velocity(bodies.velocity, g.body_a, j.a);
   scatter_velocity(bodies.velocity, g.body_b, j.b);
 }
 
 // Impulse p on B at its anchor, -p on A at its anchor.
 template <class L>
-inline void apply_impulse(JointBodies<L>& j, const Vec3<L>& p) {
+SOFTSTEP_INLINE void apply_impulse(JointBodies<L>& j, const Vec3<L>& p) {
   j.a.v = mul_add(L(0.0f) - j.a.inv_mass, p, j.a.v);
   j.a.w = j.a.w - j.a.inv_inertia * cross(j.r_a, p);
   j.b.v = mul_add(j.b.inv_mass, p, j.b.v);
@@ -92,12 +93,12 @@ inline void apply_impulse(JointBodies<L>& j, const Vec3<L>& p) {
 
 // Velocity of anchor B relative to anchor A: J v of the three point rows.
 template <class L>
-inline Vec3<L> relative_velocity(const JointBodies<L>& j) {
+SOFTSTEP_INLINE Vec3<L> relative_velocity(const JointBodies<L>& j) {
   return (j.b.v + cross(j.b.w, j.r_b)) - (j.a.v + cross(j.a.w, j.r_a));
 }
 
 template <class L>
-inline L clamp_lanes(const L& v, const L& bound) {
+SOFTSTEP_INLINE L clamp_lanes(const L& v, const L& bound) {
   return min_lanes(max_lanes(v, L(0.0f) - bound), bound);
 }
 

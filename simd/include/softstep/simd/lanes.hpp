@@ -19,6 +19,11 @@
 #define SOFTSTEP_USE_FMA 0
 #endif
 
+// Kernels are built from many small helpers over batch types; when gcc declines to inline
+// one (it did for the 8-wide gather and transpose), its batches go through memory and the
+// AVX2 kernel ran slower than SSE. Every helper here is forced inline.
+#define SOFTSTEP_INLINE inline __attribute__((always_inline))
+
 namespace softstep::simd {
 
 template <class L>
@@ -44,48 +49,48 @@ using MaskOf = typename LaneTraits<L>::Mask;
 
 // ---- scalar lane -------------------------------------------------------------------------
 
-inline void store_lanes(float* p, float v) {
+SOFTSTEP_INLINE void store_lanes(float* p, float v) {
   *p = v;
 }
-inline float fmadd(float a, float b, float c) {
+SOFTSTEP_INLINE float fmadd(float a, float b, float c) {
 #if SOFTSTEP_USE_FMA
   return std::fma(a, b, c);
 #else
   return a * b + c;
 #endif
 }
-inline float select(bool m, float a, float b) {
+SOFTSTEP_INLINE float select(bool m, float a, float b) {
   return m ? a : b;
 }
-inline float min_lanes(float a, float b) {
+SOFTSTEP_INLINE float min_lanes(float a, float b) {
   return a < b ? a : b;
 }
-inline float max_lanes(float a, float b) {
+SOFTSTEP_INLINE float max_lanes(float a, float b) {
   return a > b ? a : b;
 }
-inline float sqrt_lanes(float a) {
+SOFTSTEP_INLINE float sqrt_lanes(float a) {
   return std::sqrt(a);
 }
-inline float abs_lanes(float a) {
+SOFTSTEP_INLINE float abs_lanes(float a) {
   return std::fabs(a);
 }
-inline float lane(float v, int) {
+SOFTSTEP_INLINE float lane(float v, int) {
   return v;
 }
 
 // ---- batch lanes -------------------------------------------------------------------------
 
 template <class A>
-inline void store_lanes(float* p, const xsimd::batch<float, A>& v) {
+SOFTSTEP_INLINE void store_lanes(float* p, const xsimd::batch<float, A>& v) {
   v.store_aligned(p);
 }
 // With SOFTSTEP_USE_FMA the fused instruction is called directly: xsimd 8.1 offers 4-wide
 // FMA only as fma3<sse4_2>, which it disables whenever AVX is on (and gcc's -mfma implies
 // AVX), and its plain avx2 arch splits fma into a multiply and an add.
 template <class A>
-inline xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a,
-                                    const xsimd::batch<float, A>& b,
-                                    const xsimd::batch<float, A>& c) {
+SOFTSTEP_INLINE xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a,
+                                             const xsimd::batch<float, A>& b,
+                                             const xsimd::batch<float, A>& c) {
 #if SOFTSTEP_USE_FMA
   if constexpr (xsimd::batch<float, A>::size == 8) {
     return _mm256_fmadd_ps(a, b, c);
@@ -98,33 +103,33 @@ inline xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a,
 #endif
 }
 template <class A>
-inline xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
-                                     const xsimd::batch<float, A>& a,
-                                     const xsimd::batch<float, A>& b) {
+SOFTSTEP_INLINE xsimd::batch<float, A> select(const xsimd::batch_bool<float, A>& m,
+                                              const xsimd::batch<float, A>& a,
+                                              const xsimd::batch<float, A>& b) {
   return xsimd::select(m, a, b);
 }
 // min/max are written as selects so that the NaN and signed-zero behaviour is exactly the
 // scalar `a < b ? a : b` in every width (minps and std::min differ on NaN operands).
 template <class A>
-inline xsimd::batch<float, A> min_lanes(const xsimd::batch<float, A>& a,
-                                        const xsimd::batch<float, A>& b) {
+SOFTSTEP_INLINE xsimd::batch<float, A> min_lanes(const xsimd::batch<float, A>& a,
+                                                 const xsimd::batch<float, A>& b) {
   return xsimd::select(a < b, a, b);
 }
 template <class A>
-inline xsimd::batch<float, A> max_lanes(const xsimd::batch<float, A>& a,
-                                        const xsimd::batch<float, A>& b) {
+SOFTSTEP_INLINE xsimd::batch<float, A> max_lanes(const xsimd::batch<float, A>& a,
+                                                 const xsimd::batch<float, A>& b) {
   return xsimd::select(a > b, a, b);
 }
 template <class A>
-inline xsimd::batch<float, A> sqrt_lanes(const xsimd::batch<float, A>& a) {
+SOFTSTEP_INLINE xsimd::batch<float, A> sqrt_lanes(const xsimd::batch<float, A>& a) {
   return xsimd::sqrt(a);
 }
 template <class A>
-inline xsimd::batch<float, A> abs_lanes(const xsimd::batch<float, A>& a) {
+SOFTSTEP_INLINE xsimd::batch<float, A> abs_lanes(const xsimd::batch<float, A>& a) {
   return xsimd::abs(a);
 }
 template <class A>
-inline float lane(const xsimd::batch<float, A>& v, int i) {
+SOFTSTEP_INLINE float lane(const xsimd::batch<float, A>& v, int i) {
   alignas(64) float tmp[xsimd::batch<float, A>::size];
   v.store_aligned(tmp);
   return tmp[i];
@@ -132,7 +137,7 @@ inline float lane(const xsimd::batch<float, A>& v, int i) {
 
 // Generic load: `load<L>(p)` reads kWidth<L> consecutive, aligned floats.
 template <class L>
-inline L load(const float* p) {
+SOFTSTEP_INLINE L load(const float* p) {
   if constexpr (std::is_same_v<L, float>) {
     return *p;
   } else {
@@ -141,7 +146,7 @@ inline L load(const float* p) {
 }
 
 template <class L>
-inline L fnmadd(const L& a, const L& b, const L& c) {  // c - a*b
+SOFTSTEP_INLINE L fnmadd(const L& a, const L& b, const L& c) {  // c - a*b
   return fmadd(L(0.0f) - a, b, c);
 }
 

@@ -12,37 +12,37 @@ struct Vec3 {
 };
 
 template <class L>
-inline Vec3<L> operator+(const Vec3<L>& a, const Vec3<L>& b) {
+SOFTSTEP_INLINE Vec3<L> operator+(const Vec3<L>& a, const Vec3<L>& b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
 template <class L>
-inline Vec3<L> operator-(const Vec3<L>& a, const Vec3<L>& b) {
+SOFTSTEP_INLINE Vec3<L> operator-(const Vec3<L>& a, const Vec3<L>& b) {
   return {a.x - b.x, a.y - b.y, a.z - b.z};
 }
 template <class L>
-inline Vec3<L> operator-(const Vec3<L>& a) {
+SOFTSTEP_INLINE Vec3<L> operator-(const Vec3<L>& a) {
   return {L(0.0f) - a.x, L(0.0f) - a.y, L(0.0f) - a.z};
 }
 template <class L>
-inline Vec3<L> operator*(const L& s, const Vec3<L>& a) {
+SOFTSTEP_INLINE Vec3<L> operator*(const L& s, const Vec3<L>& a) {
   return {s * a.x, s * a.y, s * a.z};
 }
 // a + s * b, fused per component
 template <class L>
-inline Vec3<L> mul_add(const L& s, const Vec3<L>& b, const Vec3<L>& a) {
+SOFTSTEP_INLINE Vec3<L> mul_add(const L& s, const Vec3<L>& b, const Vec3<L>& a) {
   return {fmadd(s, b.x, a.x), fmadd(s, b.y, a.y), fmadd(s, b.z, a.z)};
 }
 template <class L>
-inline L dot(const Vec3<L>& a, const Vec3<L>& b) {
+SOFTSTEP_INLINE L dot(const Vec3<L>& a, const Vec3<L>& b) {
   return fmadd(a.x, b.x, fmadd(a.y, b.y, a.z * b.z));
 }
 template <class L>
-inline Vec3<L> cross(const Vec3<L>& a, const Vec3<L>& b) {
+SOFTSTEP_INLINE Vec3<L> cross(const Vec3<L>& a, const Vec3<L>& b) {
   return {fmadd(a.y, b.z, L(0.0f) - a.z * b.y), fmadd(a.z, b.x, L(0.0f) - a.x * b.z),
           fmadd(a.x, b.y, L(0.0f) - a.y * b.x)};
 }
 template <class L>
-inline Vec3<L> broadcast3(float x, float y, float z) {
+SOFTSTEP_INLINE Vec3<L> broadcast3(float x, float y, float z) {
   return {L(x), L(y), L(z)};
 }
 
@@ -54,20 +54,20 @@ struct Mat3Sym {
 };
 
 template <class L>
-inline Vec3<L> operator*(const Mat3Sym<L>& m, const Vec3<L>& v) {
+SOFTSTEP_INLINE Vec3<L> operator*(const Mat3Sym<L>& m, const Vec3<L>& v) {
   return {fmadd(m.xx, v.x, fmadd(m.xy, v.y, m.xz * v.z)),
           fmadd(m.xy, v.x, fmadd(m.yy, v.y, m.yz * v.z)),
           fmadd(m.xz, v.x, fmadd(m.yz, v.y, m.zz * v.z))};
 }
 template <class L>
-inline Mat3Sym<L> operator+(const Mat3Sym<L>& a, const Mat3Sym<L>& b) {
+SOFTSTEP_INLINE Mat3Sym<L> operator+(const Mat3Sym<L>& a, const Mat3Sym<L>& b) {
   return {a.xx + b.xx, a.yy + b.yy, a.zz + b.zz, a.xy + b.xy, a.xz + b.xz, a.yz + b.yz};
 }
 
 // skew(r)^T * I * skew(r) for symmetric I: the rotational part r x (I (r x .)) that a
 // point impulse at offset r adds to the effective-mass matrix K = J M^-1 J^T.
 template <class L>
-inline Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const Vec3<L>& r) {
+SOFTSTEP_INLINE Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const Vec3<L>& r) {
   // With S = skew(r) (S p = r x p), the anchor velocity an impulse p causes through rotation
   // is -r x I (r x p) = S^T I S p. Entry (i, j) is (S e_i) . I (S e_j): symmetric by
   // construction, so only six dot products are formed.
@@ -85,7 +85,7 @@ inline Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const Vec3<L>& r
 // between two bodies that cannot move, or a padding lane) yields zero, so the constraint
 // applies no impulse instead of a NaN.
 template <class L>
-inline Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& m) {
+SOFTSTEP_INLINE Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& m) {
   const L c_xx = fmadd(m.yy, m.zz, L(0.0f) - m.yz * m.yz);
   const L c_xy = fmadd(m.xz, m.yz, L(0.0f) - m.xy * m.zz);
   const L c_xz = fmadd(m.xy, m.yz, L(0.0f) - m.xz * m.yy);
@@ -107,7 +107,7 @@ struct Quat {
 
 // q * v * q^-1, as v + 2w (u x v) + 2 u x (u x v) with u = (x, y, z).
 template <class L>
-inline Vec3<L> rotate(const Quat<L>& q, const Vec3<L>& v) {
+SOFTSTEP_INLINE Vec3<L> rotate(const Quat<L>& q, const Vec3<L>& v) {
   const Vec3<L> u{q.x, q.y, q.z};
   const Vec3<L> t = L(2.0f) * cross(u, v);
   return mul_add(q.w, t, v + cross(u, t));
@@ -116,7 +116,7 @@ inline Vec3<L> rotate(const Quat<L>& q, const Vec3<L>& v) {
 // Advance a rotation by angular velocity w (world frame) over h: q += h/2 (w,0) * q, then
 // renormalize. First order, like the position update of semi-implicit Euler.
 template <class L>
-inline Quat<L> integrate_rotation(const Quat<L>& q, const Vec3<L>& w, const L& h) {
+SOFTSTEP_INLINE Quat<L> integrate_rotation(const Quat<L>& q, const Vec3<L>& w, const L& h) {
   const L hh = L(0.5f) * h;
   const Vec3<L> a{hh * w.x, hh * w.y, hh * w.z};
   Quat<L> r{fmadd(a.x, q.w, fmadd(a.y, q.z, fmadd(L(0.0f) - a.z, q.y, q.x))),

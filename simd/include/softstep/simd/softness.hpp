@@ -24,7 +24,7 @@ struct Softness {
 // hertz > 0 and zeta >= 0 are the caller's promise (validated at the API). hertz == 0 is a
 // spring with no stiffness: the row applies nothing.
 template <class L>
-inline Softness<L> make_softness(const L& hertz, const L& zeta, float h) {
+SOFTSTEP_INLINE Softness<L> make_softness(const L& hertz, const L& zeta, float h) {
   const L omega = L(2.0f * std::numbers::pi_v<float>) * hertz;
   const L hl(h);
   const L denom = fmadd(hl, omega, L(2.0f) * zeta);  // 2 zeta + h omega

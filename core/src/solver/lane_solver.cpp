@@ -94,9 +94,9 @@ void zero_impulses(Group& g) {
 }
 
 template <int W>
-class JointSolver final : public JointSolverBase {
+class LaneSolverImpl final : public LaneSolver {
  public:
-  explicit JointSolver(KernelTable<W> kernels)
+  explicit LaneSolverImpl(KernelTable<W> kernels)
       : kernels_(kernels), scalar_(solver::scalar_kernels()) {}
 
   int lanes() const override { return W; }
@@ -162,6 +162,14 @@ class JointSolver final : public JointSolverBase {
   void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) override {
     for (auto& c : colors_) kernels_.solve(c, arrays, ctx);
     scalar_.solve(overflow_, arrays, ctx);
+  }
+
+  void integrate_velocities(SolverBodies& b, float h) override {
+    kernels_.integrate_velocities(b.velocity.data(), b.force.data(), b.padded_count(), h);
+  }
+
+  void integrate_positions(SolverBodies& b, float h) override {
+    kernels_.integrate_positions(b.delta.data(), b.velocity.data(), b.padded_count(), h);
   }
 
   void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) override {
@@ -265,18 +273,18 @@ const char* simd_width_name(SimdWidth width) {
   return "?";
 }
 
-std::unique_ptr<JointSolverBase> make_joint_solver(SimdWidth width) {
+std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width) {
   switch (width) {
     case SimdWidth::Scalar:
-      return std::make_unique<JointSolver<1>>(solver::scalar_kernels());
+      return std::make_unique<LaneSolverImpl<1>>(solver::scalar_kernels());
     case SimdWidth::Sse:
-      return std::make_unique<JointSolver<4>>(solver::sse_kernels());
+      return std::make_unique<LaneSolverImpl<4>>(solver::sse_kernels());
     case SimdWidth::Avx2:
-      return std::make_unique<JointSolver<8>>(solver::avx2_kernels());
+      return std::make_unique<LaneSolverImpl<8>>(solver::avx2_kernels());
     case SimdWidth::Best:
       break;
   }
-  throw std::logic_error("make_joint_solver: width must be resolved");
+  throw std::logic_error("make_lane_solver: width must be resolved");
 }
 
 }  // namespace softstep
