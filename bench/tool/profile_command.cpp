@@ -6,17 +6,22 @@
 #include <vector>
 
 #include "scenes/chain_scene.hpp"
+#include "scenes/grid_scene.hpp"
 #include "tool/progress_bar.hpp"
 
 namespace softstep::tool {
 
 const char* const kProfileUsage =
-    "usage: softstep profile [chain] [--links N] [--chains M] [--joint ball|distance]\n"
-    "                        [--hertz F --zeta Z] [--steps S] [--substeps N] [--relax N]\n"
-    "                        [--threads T] [--simd scalar|sse|avx2] [--no-warm-start]\n"
-    "  A chain of N links (solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out\n"
-    "  horizontally, first link jointed to the static world), M chains 1 m apart, stepped\n"
-    "  S times at 60 Hz. Rigid joints unless --hertz is given.";
+    "usage: softstep profile [chain|grid] [scene options] [--hertz F --zeta Z] [--steps S]\n"
+    "                        [--substeps N] [--relax N] [--threads T] [--simd scalar|sse|avx2]\n"
+    "                        [--no-warm-start]\n"
+    "  chain [--links N] [--chains M] [--joint ball|distance]   (default: chain, 10000 links)\n"
+    "      N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally, the\n"
+    "      first link jointed to the static world; M parallel chains 1 m apart.\n"
+    "  grid [--size N]   (default 100)\n"
+    "      N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top row\n"
+    "      static, ball joints to the right and lower neighbours.\n"
+    "  Stepped S times at 60 Hz (default 300). Rigid joints unless --hertz is given.";
 
 namespace {
 
@@ -35,24 +40,41 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+namespace {
+
+// A built scene: what the report needs to know about it.
+struct SceneRun {
+  std::string description;
+  std::vector<JointId> joints;
+  double rows = 0.0;
+};
+
+}  // namespace
+
 int profile_command(Arguments& args) {
-  const std::vector<std::string> scene = args.take_positionals();
-  if (scene.size() > 1 || (scene.size() == 1 && scene[0] != "chain")) {
-    throw UsageError("unknown scene '" + (scene.empty() ? std::string() : scene.back()) +
-                     "' (scenes: chain)");
+  const std::vector<std::string> positionals = args.take_positionals();
+  const std::string scene = positionals.empty() ? "chain" : positionals.front();
+  if (positionals.size() > 1 || (scene != "chain" && scene != "grid")) {
+    throw UsageError("unknown scene '" + positionals.back() + "' (scenes: chain, grid)");
   }
+  const auto only_for = [&](const char* flag, const char* owner) {
+    if (scene != owner && args.has(flag)) throw UsageError(std::string(flag) + " is a " + owner + " option");
+  };
+  for (const char* flag : {"--links", "--chains", "--joint"}) only_for(flag, "chain");
+  only_for("--size", "grid");
+
   scenes::ChainOptions chain;
   chain.links = static_cast<int>(args.take_int("--links", 10000, 1, 100000000));
   chain.chains = static_cast<int>(args.take_int("--chains", 1, 1, 1000000));
-  chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball"
-                    ? scenes::ChainJoint::Ball
-                    : scenes::ChainJoint::Distance;
+  chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball" ? scenes::ChainJoint::Ball
+                                                                                     : scenes::ChainJoint::Distance;
+  scenes::GridOptions grid;
+  grid.size = static_cast<int>(args.take_int("--size", 100, 2, 100000));
   const bool soft = args.has("--hertz");
   const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
   const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
-  if (!soft && args.has("--zeta"))
-    throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
-  chain.spring = soft ? Spring::soft(hertz, zeta) : Spring::rigid();
+  if (!soft && args.has("--zeta")) throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
+  chain.spring = grid.spring = soft ? Spring::soft(hertz, zeta) : Spring::rigid();
   const long steps = args.take_int("--steps", 300, 1, 100000000);
   WorldSettings settings;
   settings.substeps = static_cast<int>(args.take_int("--substeps", 4, 1, 1000));
@@ -63,7 +85,20 @@ int profile_command(Arguments& args) {
   args.reject_leftovers();
 
   World world(settings);
-  const scenes::ChainScene built = scenes::build_chain(world, chain);
+  SceneRun run;
+  const std::string spring_text =
+      soft ? "spring " + std::to_string(hertz) + " Hz, zeta " + std::to_string(zeta) : std::string("rigid");
+  if (scene == "chain") {
+    run.joints = scenes::build_chain(world, chain).joints;
+    run.rows = static_cast<double>(run.joints.size()) * scenes::rows_per_joint(chain.joint);
+    run.description = "chain: " + std::to_string(chain.chains) + " x " + std::to_string(chain.links) + " links, " +
+                      (chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance") + " joints, " + spring_text;
+  } else {
+    run.joints = scenes::build_grid(world, grid).joints;
+    run.rows = 3.0 * static_cast<double>(run.joints.size());
+    run.description = "grid: " + std::to_string(grid.size) + " x " + std::to_string(grid.size) +
+                      " bodies, ball joints, " + spring_text;
+  }
   const double dt = 1.0 / 60.0;
   std::vector<double> step_ms;
   step_ms.reserve(static_cast<std::size_t>(steps));
@@ -78,12 +113,11 @@ int profile_command(Arguments& args) {
       bar.update(i + 1);
     }
   }
-  const scenes::JointErrors errors = scenes::joint_errors(world, built.joints);
+  const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
   worst_error = errors.max;
   const SolverLayout layout = world.solver_layout();
   const double ms = median(step_ms);
-  const double rows =
-      static_cast<double>(built.joints.size()) * scenes::rows_per_joint(chain.joint);
+  const double rows = run.rows;
   // Each sub-step solves every row once and relaxes it `relax` times.
   const double row_solves = rows * settings.substeps * (1 + settings.relax_iterations);
 
@@ -99,8 +133,10 @@ int profile_command(Arguments& args) {
       "lanes)%s\n",
       steps, settings.substeps, settings.relax_iterations, settings.threads,
       simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
-  std::printf("colors           %d used, overflow %u, lane fill %.3f\n", layout.colors_used,
-              layout.overflow_joints, layout.lane_fill);
+  std::string per_color;
+  for (std::uint32_t n : layout.joints_per_color) per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
+  std::printf("colors           %d used (joints per color: %s), overflow %u, lane fill %.3f\n",
+              layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
   std::printf("ms per step      %.3f (median of %ld)\n", ms, steps);
   std::printf("row solves / s   %.3g (ns per row solve %.2f)\n", row_solves / (ms * 1e-3),
               ms * 1e6 / row_solves);
