@@ -18,18 +18,27 @@ struct alignas(32) BallJointGroup : JointLanes<W> {
   float impulse[3][W];
 };
 
-// K^-1 with K = (m_A^-1 + m_B^-1) 1 + S(r_A)^T I_A^-1 S(r_A) + S(r_B)^T I_B^-1 S(r_B).
+// K = J M^-1 J^T = (m_A^-1 + m_B^-1) 1 + S(r_A)^T I_A^-1 S(r_A) + S(r_B)^T I_B^-1 S(r_B).
+template <class L>
+SOFTSTEP_INLINE Mat3Sym<L> point_constraint_mass(const L& inv_mass_a,
+                                                 const Mat3Sym<L>& inv_inertia_a,
+                                                 const Vec3<L>& r_a, const L& inv_mass_b,
+                                                 const Mat3Sym<L>& inv_inertia_b,
+                                                 const Vec3<L>& r_b) {
+  const L m_sum = inv_mass_a + inv_mass_b;
+  return Mat3Sym<L>{m_sum, m_sum, m_sum, L(0.0f), L(0.0f), L(0.0f)} +
+         rotational_mass_term(inv_inertia_a, r_a) + rotational_mass_term(inv_inertia_b, r_b);
+}
+
+// The effective mass matrix K^-1 (zero where K is singular).
 template <class L>
 SOFTSTEP_INLINE Mat3Sym<L> inverse_effective_mass(const L& inv_mass_a,
                                                   const Mat3Sym<L>& inv_inertia_a,
                                                   const Vec3<L>& r_a, const L& inv_mass_b,
                                                   const Mat3Sym<L>& inv_inertia_b,
                                                   const Vec3<L>& r_b) {
-  const L m_sum = inv_mass_a + inv_mass_b;
-  const Mat3Sym<L> k = Mat3Sym<L>{m_sum, m_sum, m_sum, L(0.0f), L(0.0f), L(0.0f)} +
-                       rotational_mass_term(inv_inertia_a, r_a) +
-                       rotational_mass_term(inv_inertia_b, r_b);
-  return inverse_or_zero(k);
+  return inverse_or_zero(
+      point_constraint_mass(inv_mass_a, inv_inertia_a, r_a, inv_mass_b, inv_inertia_b, r_b));
 }
 
 template <class L>
@@ -50,17 +59,19 @@ SOFTSTEP_INLINE void warm_start_ball_joints(BallJointGroup<kWidth<L>>& g,
 template <class L, bool kUseBias>
 SOFTSTEP_INLINE void solve_ball_joints(BallJointGroup<kWidth<L>>& g, const BodyArrays& bodies) {
   JointBodies<L> j = gather_joint<L>(g, bodies);
-  const Mat3Sym<L> k_inv = inverse_effective_mass(j.a.inv_mass, j.a.inv_inertia, j.r_a,
-                                                  j.b.inv_mass, j.b.inv_inertia, j.r_b);
+  const Mat3Sym<L> k = point_constraint_mass(j.a.inv_mass, j.a.inv_inertia, j.r_a, j.b.inv_mass,
+                                             j.b.inv_inertia, j.r_b);
+  const Mat3Sym<L> k_inv = inverse_or_zero(k);
   const Vec3<L> cdot = relative_velocity(j);
   const Vec3<L> accumulated = load3<L>(g.impulse);
   Vec3<L> dp;
   if constexpr (kUseBias) {
     const L bias_rate = load<L>(g.bias_rate);
     const L bound = load<L>(g.max_bias);
-    const Vec3<L> bias{clamp_lanes(bias_rate * j.separation.x, bound),
-                       clamp_lanes(bias_rate * j.separation.y, bound),
-                       clamp_lanes(bias_rate * j.separation.z, bound)};
+    const Vec3<L> fed_back = load<L>(g.feedback) * (k * accumulated);  // gamma' P
+    const Vec3<L> bias{bounded_bias(bias_rate * j.separation.x, fed_back.x, bound),
+                       bounded_bias(bias_rate * j.separation.y, fed_back.y, bound),
+                       bounded_bias(bias_rate * j.separation.z, fed_back.z, bound)};
     const Vec3<L> rigid_dp = k_inv * (cdot + bias);
     const L neg_mass_scale = L(0.0f) - load<L>(g.mass_scale);
     const L impulse_scale = load<L>(g.impulse_scale);

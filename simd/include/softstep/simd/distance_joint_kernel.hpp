@@ -23,18 +23,32 @@ struct alignas(32) DistanceJointGroup : JointLanes<W> {
   float upper_impulse[W];
 };
 
-// 1 / (J M^-1 J^T) along the unit axis n (0 when neither body can move along it).
+// K = J M^-1 J^T along the unit axis n.
+template <class L>
+SOFTSTEP_INLINE L axial_constraint_mass(const L& inv_mass_a, const Mat3Sym<L>& inv_inertia_a,
+                                        const Vec3<L>& r_a, const L& inv_mass_b,
+                                        const Mat3Sym<L>& inv_inertia_b, const Vec3<L>& r_b,
+                                        const Vec3<L>& n) {
+  const Vec3<L> ran = cross(r_a, n);
+  const Vec3<L> rbn = cross(r_b, n);
+  return inv_mass_a + inv_mass_b + dot(ran, inv_inertia_a * ran) + dot(rbn, inv_inertia_b * rbn);
+}
+
+// 1/k, or 0 where k is not positive (neither body can move along the axis).
+template <class L>
+SOFTSTEP_INLINE L inverse_or_zero(const L& k) {
+  const auto ok = k > L(0.0f);
+  return select(ok, L(1.0f) / select(ok, k, L(1.0f)), L(0.0f));
+}
+
+// 1 / (J M^-1 J^T) along the unit axis n.
 template <class L>
 SOFTSTEP_INLINE L axial_mass(const L& inv_mass_a, const Mat3Sym<L>& inv_inertia_a,
                              const Vec3<L>& r_a, const L& inv_mass_b,
                              const Mat3Sym<L>& inv_inertia_b, const Vec3<L>& r_b,
                              const Vec3<L>& n) {
-  const Vec3<L> ran = cross(r_a, n);
-  const Vec3<L> rbn = cross(r_b, n);
-  const L k =
-      inv_mass_a + inv_mass_b + dot(ran, inv_inertia_a * ran) + dot(rbn, inv_inertia_b * rbn);
-  const auto ok = k > L(0.0f);
-  return select(ok, L(1.0f) / select(ok, k, L(1.0f)), L(0.0f));
+  return inverse_or_zero(
+      axial_constraint_mass(inv_mass_a, inv_inertia_a, r_a, inv_mass_b, inv_inertia_b, r_b, n));
 }
 
 namespace detail {
@@ -53,8 +67,8 @@ SOFTSTEP_INLINE Vec3<L> normalize_or_zero(const Vec3<L>& d, L& length) {
 // in solve and relax alike.
 template <class L, bool kUseBias>
 SOFTSTEP_INLINE void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const L& sign, const L& c,
-                                     const L& axial, const float* enabled, float* accumulated_lanes,
-                                     const SubstepContext& ctx) {
+                                     const L& k, const L& axial, const float* enabled,
+                                     float* accumulated_lanes, const SubstepContext& ctx) {
   const L cdot = sign * dot(n, relative_velocity(j));
   const L accumulated = load<L>(accumulated_lanes);
   const auto ahead = c > L(0.0f);
@@ -62,8 +76,12 @@ SOFTSTEP_INLINE void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const 
   L mass_scale(1.0f);
   L impulse_scale(0.0f);
   if constexpr (kUseBias) {
+    // Only the pushing direction is bounded: bias_rate C + gamma' P >= -max_correction_speed
+    // (see bounded_bias for why the sum and not the bias alone).
+    const L fed_back = L(ctx.rigid.feedback) * k * accumulated;
     const L rigid_bias =
-        max_lanes(L(ctx.rigid.bias_rate) * c, L(0.0f) - L(ctx.max_correction_speed));
+        max_lanes(L(ctx.rigid.bias_rate) * c + fed_back, L(0.0f) - L(ctx.max_correction_speed)) -
+        fed_back;
     bias = select(ahead, bias, rigid_bias);
     mass_scale = select(ahead, mass_scale, L(ctx.rigid.mass_scale));
     impulse_scale = select(ahead, impulse_scale, L(ctx.rigid.impulse_scale));
@@ -100,8 +118,9 @@ SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
   JointBodies<L> j = gather_joint<L>(g, bodies);
   L length;
   const Vec3<L> n = detail::normalize_or_zero(j.separation, length);
-  const L axial =
-      axial_mass(j.a.inv_mass, j.a.inv_inertia, j.r_a, j.b.inv_mass, j.b.inv_inertia, j.r_b, n);
+  const L k = axial_constraint_mass(j.a.inv_mass, j.a.inv_inertia, j.r_a, j.b.inv_mass,
+                                    j.b.inv_inertia, j.r_b, n);
+  const L axial = inverse_or_zero(k);
 
   // Spring or rod row.
   {
@@ -109,8 +128,8 @@ SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
     const L accumulated = load<L>(g.impulse);
     L dp;
     if constexpr (kUseBias) {
-      const L bias = clamp_lanes(load<L>(g.bias_rate) * (length - load<L>(g.rest_length)),
-                                 load<L>(g.max_bias));
+      const L bias = bounded_bias(load<L>(g.bias_rate) * (length - load<L>(g.rest_length)),
+                                  load<L>(g.feedback) * k * accumulated, load<L>(g.max_bias));
       dp = fmadd(L(0.0f) - load<L>(g.mass_scale) * axial, cdot + bias,
                  L(0.0f) - load<L>(g.impulse_scale) * accumulated);
     } else {
@@ -120,9 +139,9 @@ SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
     apply_impulse(j, dp * n);
   }
   // Lower limit pushes apart (along n), upper limit pulls together (along -n).
-  detail::solve_limit_row<L, kUseBias>(j, n, L(1.0f), length - load<L>(g.min_length), axial,
+  detail::solve_limit_row<L, kUseBias>(j, n, L(1.0f), length - load<L>(g.min_length), k, axial,
                                        g.lower_enabled, g.lower_impulse, ctx);
-  detail::solve_limit_row<L, kUseBias>(j, n, L(-1.0f), load<L>(g.max_length) - length, axial,
+  detail::solve_limit_row<L, kUseBias>(j, n, L(-1.0f), load<L>(g.max_length) - length, k, axial,
                                        g.upper_enabled, g.upper_impulse, ctx);
   scatter_joint(g, bodies, j);
 }

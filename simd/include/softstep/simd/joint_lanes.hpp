@@ -24,6 +24,7 @@ struct alignas(32) JointLanes {
   float bias_rate[W];
   float mass_scale[W];
   float impulse_scale[W];
+  float feedback[W];     // 1/a: gamma' = feedback * K (see softness.hpp)
   float max_bias[W];     // m/s, +inf for springs
   float relax_scale[W];  // 1 for rigid rows, 0 for springs (springs are not relaxed)
 };
@@ -36,6 +37,7 @@ SOFTSTEP_INLINE void prepare_row_coefficients(JointLanes<W>& g, const SubstepCon
   store_lanes(g.bias_rate, select(rigid, L(ctx.rigid.bias_rate), spring.bias_rate));
   store_lanes(g.mass_scale, select(rigid, L(ctx.rigid.mass_scale), spring.mass_scale));
   store_lanes(g.impulse_scale, select(rigid, L(ctx.rigid.impulse_scale), spring.impulse_scale));
+  store_lanes(g.feedback, select(rigid, L(ctx.rigid.feedback), spring.feedback));
   store_lanes(g.max_bias, select(rigid, L(ctx.max_correction_speed),
                                  L(std::numeric_limits<float>::infinity())));
   store_lanes(g.relax_scale, select(rigid, L(1.0f), L(0.0f)));
@@ -100,6 +102,21 @@ SOFTSTEP_INLINE Vec3<L> relative_velocity(const JointBodies<L>& j) {
 template <class L>
 SOFTSTEP_INLINE L clamp_lanes(const L& v, const L& bound) {
   return min_lanes(max_lanes(v, L(0.0f) - bound), bound);
+}
+
+// The bias a rigid row solves with, given bias = bias_rate * C and the velocity its
+// accumulated impulse feeds back, gamma' P. What is bounded by max_bias is their sum: the
+// speed at which the row asks to close its error. A loaded row at rest has the two in
+// balance (bias_rate C + gamma' P = 0), so its load is untouched by the bound however large;
+// a row created far apart (P = 0) closes at max_bias instead of launching its bodies.
+// Bounding the bias alone made a chain under a heavy load sink without end: the stretch the
+// load needs asked for more than max_bias.
+// Springs (bound = +inf) keep their bias untouched, so a spring stays exactly the
+// implicit-Euler spring (adding and removing gamma' P would round).
+template <class L>
+SOFTSTEP_INLINE L bounded_bias(const L& bias, const L& feedback_velocity, const L& bound) {
+  return select(bound == L(std::numeric_limits<float>::infinity()), bias,
+                clamp_lanes(bias + feedback_velocity, bound) - feedback_velocity);
 }
 
 }  // namespace softstep::simd

@@ -6,6 +6,8 @@
 //   bias_rate = omega / (2 zeta + h omega)   (= beta / h)
 //   mass_scale = a / (1 + a),  impulse_scale = 1 / (1 + a)
 //   dP = -mass_scale * m_eff * (J v + bias_rate * C) - impulse_scale * P
+// and the velocity the accumulated impulse feeds back, gamma' P with gamma' = gamma / h:
+//   gamma' = feedback * K,  feedback = 1 / a   (K = 1 / m_eff; a matrix for a 3-row block)
 #pragma once
 
 #include <numbers>
@@ -19,6 +21,7 @@ struct Softness {
   L bias_rate;      // 1/s: fraction of the position error removed per second
   L mass_scale;     // in [0, 1): how much of the rigid impulse is applied
   L impulse_scale;  // in (0, 1]: how much of the accumulated impulse is given back
+  L feedback;       // 1/a: gamma' = feedback * K, the softness as a velocity per impulse
 };
 
 // hertz > 0 and zeta >= 0 are the caller's promise (validated at the API). hertz == 0 is a
@@ -32,8 +35,10 @@ SOFTSTEP_INLINE Softness<L> make_softness(const L& hertz, const L& zeta, float h
   const L safe_denom = select(active, denom, L(1.0f));
   const L a = hl * omega * safe_denom;
   const L inv_one_plus_a = L(1.0f) / (L(1.0f) + a);
+  const auto stiff = active && a > L(0.0f);
   return {select(active, omega / safe_denom, L(0.0f)), select(active, a * inv_one_plus_a, L(0.0f)),
-          select(active, inv_one_plus_a, L(0.0f))};
+          select(active, inv_one_plus_a, L(0.0f)),
+          select(stiff, L(1.0f) / select(stiff, a, L(1.0f)), L(0.0f))};
 }
 
 }  // namespace softstep::simd
