@@ -72,6 +72,31 @@ TEST(EffectiveMass, UnitImpulseExperimentMatchesKernels) {
   }
 }
 
+// The 3x3 inverse is scaled before its determinant is formed, so masses far from 1 kg keep
+// their effective mass (an unscaled determinant left the float range at ~1e13 kg and gave
+// inf/NaN).
+TEST(EffectiveMass, ExtremeMassesStayAccurate) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (double scale : {1e-12, 1e-6, 1e6, 1e13, 1e16}) {
+    RandomBody a = random_body(rng), b = random_body(rng);
+    for (RandomBody* body : {&a, &b}) {
+      body->inv_mass /= scale;
+      body->inv_inertia /= scale;
+    }
+    const Eigen::Vector3d n = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+    const double expected = measured_effective_mass(a, b, n);
+    const Mat3Sym<float> k_inv =
+        inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
+                               float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r));
+    Eigen::Matrix3d k_inv_m;
+    k_inv_m << k_inv.xx, k_inv.xy, k_inv.xz, k_inv.xy, k_inv.yy, k_inv.yz, k_inv.xz, k_inv.yz,
+        k_inv.zz;
+    ASSERT_TRUE(k_inv_m.allFinite()) << "scale " << scale;
+    EXPECT_NEAR(1.0 / n.dot(k_inv_m.inverse() * n), expected, 2e-4 * expected) << "scale " << scale;
+  }
+}
+
 TEST(EffectiveMass, ImmovableBodiesGiveZeroNotNan) {
   const Mat3Sym<float> zero{0, 0, 0, 0, 0, 0};
   const Vec3<float> r{0.1f, 0.2f, 0.3f};

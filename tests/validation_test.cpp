@@ -169,6 +169,8 @@ TEST(Validation, JointRejections) {
                   "BallJointDef.spring.hertz", "-1");
   expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(kNan, 0.5); }),
                   "BallJointDef.spring.hertz", "nan");
+  expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(1e300, 0.5); }),
+                  "BallJointDef.spring.hertz", "1e+300");
   expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(5.0, -0.1); }),
                   "BallJointDef.spring.damping_ratio", "-0.1");
   expect_rejected(ball([](Fixture&, BallJointDef& j) { j.spring = Spring::soft(5.0, kInf); }),
@@ -233,6 +235,7 @@ TEST(Validation, StepAndSettingsRejections) {
   expect_rejected([](Fixture& f) { f.world.step(-1.0 / 60.0); }, "dt", "-0.0166");
   expect_rejected([](Fixture& f) { f.world.step(kNan); }, "dt", "nan");
   expect_rejected([](Fixture& f) { f.world.step(kInf); }, "dt", "inf");
+  expect_rejected([](Fixture& f) { f.world.step(1e300); }, "dt", "1e+300");
   const auto settings = [](auto mutate) {
     return [mutate](Fixture& f) {
       WorldSettings s = f.world.settings();

@@ -7,14 +7,16 @@
 namespace softstep::scenes {
 
 ChainScene build_chain(World& world, const ChainOptions& o) {
-  if (o.links < 1 || o.chains < 1) {
+  const int links = o.link_masses.empty() ? o.links : static_cast<int>(o.link_masses.size());
+  if (links < 1 || o.chains < 1) {
     throw std::invalid_argument("build_chain: links and chains must be >= 1 (links " +
                                 std::to_string(o.links) + ", chains " + std::to_string(o.chains) +
                                 ")");
   }
-  const Eigen::Vector3d step = o.layout == ChainLayout::Horizontal
-                                   ? Eigen::Vector3d(o.link_spacing, 0.0, 0.0)
-                                   : Eigen::Vector3d(0.0, -o.link_spacing, 0.0);
+  const Eigen::Vector3d straight = o.layout == ChainLayout::Horizontal
+                                       ? Eigen::Vector3d(o.link_spacing, 0.0, 0.0)
+                                       : Eigen::Vector3d(0.0, -o.link_spacing, 0.0);
+  const Eigen::Vector3d step = Eigen::AngleAxisd(o.tilt, Eigen::Vector3d::UnitZ()) * straight;
   ChainScene scene;
   scene.links.resize(static_cast<std::size_t>(o.chains));
   for (int c = 0; c < o.chains; ++c) {
@@ -24,11 +26,16 @@ ChainScene build_chain(World& world, const ChainOptions& o) {
     anchor_def.position = origin;
     BodyId previous = world.create_body(anchor_def);
     scene.anchors.push_back(previous);
-    for (int i = 0; i < o.links; ++i) {
+    Eigen::Vector3d position = origin;
+    for (int i = 0; i < links; ++i) {
+      const double gap = o.joint_gaps.empty() ? 0.0 : o.joint_gaps[static_cast<std::size_t>(i)];
+      position += step + gap * step.normalized();
+      const double mass =
+          o.link_masses.empty() ? o.link_mass : o.link_masses[static_cast<std::size_t>(i)];
       BodyDef link;
-      link.position = origin + (i + 1) * step;
-      link.mass = o.link_mass;
-      link.inertia = solid_sphere_inertia(o.link_mass, o.link_radius);
+      link.position = position;
+      link.mass = mass;
+      link.inertia = solid_sphere_inertia(mass, o.link_radius) * o.inertia_scale;
       const BodyId body = world.create_body(link);
       scene.links[static_cast<std::size_t>(c)].push_back(body);
       if (o.joint == ChainJoint::Ball) {

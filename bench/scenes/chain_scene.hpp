@@ -4,6 +4,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "softstep/softstep.hpp"
@@ -22,7 +23,15 @@ struct ChainOptions {
   ChainJoint joint = ChainJoint::Ball;
   Spring spring = Spring::rigid();
   ChainLayout layout = ChainLayout::Horizontal;
-  double link_mass = 1.0;      // kg, solid spheres
+  double link_mass = 1.0;  // kg, solid spheres
+  // Per-link masses, first link first (kg); when not empty they replace link_mass and the
+  // chain has as many links as entries (links is ignored).
+  std::vector<double> link_masses;
+  double inertia_scale = 1.0;  // multiplies every link's sphere inertia (huge or tiny inertia)
+  double tilt = 0.0;           // rad: the layout direction turned about z (a hanging chain swings)
+  // Extra distance between the anchors of each joint at creation, m, first joint first (a
+  // chain laid out already stretched to its equilibrium); empty: none.
+  std::vector<double> joint_gaps;
   double link_radius = 0.1;    // m
   double link_spacing = 0.25;  // m, centre to centre
   double chain_spacing = 1.0;  // m, between parallel chains (along z)

@@ -6,6 +6,7 @@
 
 #include "softstep/errors.hpp"
 #include "tool/arguments.hpp"
+#include "tool/hardcases_command.hpp"
 #include "tool/profile_command.hpp"
 
 int main(int argc, char** argv) {
@@ -25,6 +26,13 @@ int main(int argc, char** argv) {
         return 0;
       }
       return profile_command(args);
+    }
+    if (command == "hardcases") {
+      if (args.take_switch("--help")) {
+        std::puts(kHardcasesUsage);
+        return 0;
+      }
+      return hardcases_command(args);
     }
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {

@@ -58,7 +58,8 @@ int profile_command(Arguments& args) {
     throw UsageError("unknown scene '" + positionals.back() + "' (scenes: chain, grid)");
   }
   const auto only_for = [&](const char* flag, const char* owner) {
-    if (scene != owner && args.has(flag)) throw UsageError(std::string(flag) + " is a " + owner + " option");
+    if (scene != owner && args.has(flag))
+      throw UsageError(std::string(flag) + " is a " + owner + " option");
   };
   for (const char* flag : {"--links", "--chains", "--joint"}) only_for(flag, "chain");
   only_for("--size", "grid");
@@ -66,14 +67,16 @@ int profile_command(Arguments& args) {
   scenes::ChainOptions chain;
   chain.links = static_cast<int>(args.take_int("--links", 10000, 1, 100000000));
   chain.chains = static_cast<int>(args.take_int("--chains", 1, 1, 1000000));
-  chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball" ? scenes::ChainJoint::Ball
-                                                                                     : scenes::ChainJoint::Distance;
+  chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball"
+                    ? scenes::ChainJoint::Ball
+                    : scenes::ChainJoint::Distance;
   scenes::GridOptions grid;
   grid.size = static_cast<int>(args.take_int("--size", 100, 2, 100000));
   const bool soft = args.has("--hertz");
   const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
   const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
-  if (!soft && args.has("--zeta")) throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
+  if (!soft && args.has("--zeta"))
+    throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
   chain.spring = grid.spring = soft ? Spring::soft(hertz, zeta) : Spring::rigid();
   const long steps = args.take_int("--steps", 300, 1, 100000000);
   WorldSettings settings;
@@ -87,12 +90,15 @@ int profile_command(Arguments& args) {
   World world(settings);
   SceneRun run;
   const std::string spring_text =
-      soft ? "spring " + std::to_string(hertz) + " Hz, zeta " + std::to_string(zeta) : std::string("rigid");
+      soft ? "spring " + std::to_string(hertz) + " Hz, zeta " + std::to_string(zeta)
+           : std::string("rigid");
   if (scene == "chain") {
     run.joints = scenes::build_chain(world, chain).joints;
     run.rows = static_cast<double>(run.joints.size()) * scenes::rows_per_joint(chain.joint);
-    run.description = "chain: " + std::to_string(chain.chains) + " x " + std::to_string(chain.links) + " links, " +
-                      (chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance") + " joints, " + spring_text;
+    run.description = "chain: " + std::to_string(chain.chains) + " x " +
+                      std::to_string(chain.links) + " links, " +
+                      (chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance") +
+                      " joints, " + spring_text;
   } else {
     run.joints = scenes::build_grid(world, grid).joints;
     run.rows = 3.0 * static_cast<double>(run.joints.size());
@@ -134,7 +140,8 @@ int profile_command(Arguments& args) {
       steps, settings.substeps, settings.relax_iterations, settings.threads,
       simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
   std::string per_color;
-  for (std::uint32_t n : layout.joints_per_color) per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
+  for (std::uint32_t n : layout.joints_per_color)
+    per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
   std::printf("colors           %d used (joints per color: %s), overflow %u, lane fill %.3f\n",
               layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
   std::printf("ms per step      %.3f (median of %ld)\n", ms, steps);

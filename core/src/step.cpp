@@ -81,8 +81,11 @@ void World::Impl::finalize_bodies() {
     b.position += Eigen::Vector3d(d.dp[0], d.dp[1], d.dp[2]);
     const Eigen::Quaterniond dq(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
     b.orientation = (dq * b.orientation).normalized();
-    b.linear_velocity = Eigen::Vector3d(v.v[0], v.v[1], v.v[2]);
-    b.angular_velocity = Eigen::Vector3d(v.w[0], v.w[1], v.w[2]);
+    // A kinematic body keeps the velocity the user gave it, not its float copy.
+    if (b.type == BodyType::Dynamic) {
+      b.linear_velocity = Eigen::Vector3d(v.v[0], v.v[1], v.v[2]);
+      b.angular_velocity = Eigen::Vector3d(v.w[0], v.w[1], v.w[2]);
+    }
   }
 }
 
@@ -93,8 +96,9 @@ void World::step(double dt) {
   }
   const WorldSettings& s = w.settings;
   const float h = static_cast<float>(dt / s.substeps);
-  if (!(h > 0.0f)) {
-    validation::reject("step", "dt", validation::format(dt), "dt / substeps underflows float");
+  if (!(h > 0.0f && h <= 1e6f)) {
+    validation::reject("step", "dt", validation::format(dt),
+                       "dt / substeps must be a representable sub-step in (0, 1e6] s");
   }
   if (!w.joints_packed) {
     w.lane_solver->pack(w.coloring, w.joints, w.bodies);

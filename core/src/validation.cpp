@@ -9,6 +9,9 @@ namespace softstep::validation {
 // Masses outside this range have an inverse that float cannot hold (or that is denormal).
 constexpr double kMinMass = 1e-30;
 constexpr double kMaxMass = 1e30;
+// The solver works in float (max 3.4e38) on products of these values; anything larger than
+// this is rejected as out of range rather than left to turn into inf in a kernel.
+constexpr double kMaxMagnitude = 1e18;
 
 std::string format(double value) {
   char buffer[40];
@@ -30,21 +33,25 @@ void reject(std::string_view call, std::string_view field, const std::string& va
 
 void finite(std::string_view call, std::string_view field, double value) {
   if (!std::isfinite(value)) reject(call, field, format(value), "must be finite");
+  if (std::abs(value) > kMaxMagnitude) reject(call, field, format(value), "must be within +-1e18");
 }
 
 void finite(std::string_view call, std::string_view field, const Eigen::Vector3d& value) {
   if (!value.allFinite()) reject(call, field, format(value), "every component must be finite");
+  if (value.cwiseAbs().maxCoeff() > kMaxMagnitude) {
+    reject(call, field, format(value), "every component must be within +-1e18");
+  }
 }
 
 void non_negative(std::string_view call, std::string_view field, double value) {
-  if (!(std::isfinite(value) && value >= 0.0)) {
-    reject(call, field, format(value), "must be finite and >= 0");
+  if (!(std::isfinite(value) && value >= 0.0 && value <= kMaxMagnitude)) {
+    reject(call, field, format(value), "must be finite, >= 0 and <= 1e18");
   }
 }
 
 void positive(std::string_view call, std::string_view field, double value) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    reject(call, field, format(value), "must be finite and > 0");
+  if (!(std::isfinite(value) && value > 0.0 && value <= kMaxMagnitude)) {
+    reject(call, field, format(value), "must be finite, > 0 and <= 1e18");
   }
 }
 
@@ -86,8 +93,9 @@ void inertia_tensor(std::string_view call, std::string_view field, const Eigen::
 void spring(std::string_view call, std::string_view field, const Spring& s) {
   const std::string hertz_field = std::string(field) + ".hertz";
   const std::string zeta_field = std::string(field) + ".damping_ratio";
-  if (std::isnan(s.hertz) || s.hertz < 0.0) {
-    reject(call, hertz_field, format(s.hertz), "must be >= 0 (0 = free, +infinity = rigid)");
+  if (std::isnan(s.hertz) || s.hertz < 0.0 || (s.hertz > kMaxMagnitude && !s.is_rigid())) {
+    reject(call, hertz_field, format(s.hertz),
+           "must be in [0, 1e18] (0 = free) or +infinity (rigid)");
   }
   non_negative(call, zeta_field, s.damping_ratio);
 }

@@ -278,10 +278,11 @@ JointId World::create_distance_joint(const DistanceJointDef& def) {
                                           def.local_anchor_b, def.spring, "DistanceJointDef");
   validation::non_negative(call, "DistanceJointDef.rest_length", def.rest_length);
   validation::non_negative(call, "DistanceJointDef.min_length", def.min_length);
-  if (std::isnan(def.max_length) || def.max_length < def.min_length) {
+  if (std::isnan(def.max_length) || def.max_length < def.min_length ||
+      (def.max_length > 1e18 && def.max_length != std::numeric_limits<double>::infinity())) {
     validation::reject(call, "DistanceJointDef.max_length", validation::format(def.max_length),
                        "must be >= min_length (" + validation::format(def.min_length) +
-                           "); +infinity for no upper limit");
+                           ") and <= 1e18; +infinity for no upper limit");
   }
   JointSlot j;
   j.type = JointType::Distance;

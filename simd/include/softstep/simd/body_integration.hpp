@@ -16,6 +16,8 @@ struct alignas(32) ForceRecord {
   float unused[3];
 };
 
+inline constexpr float kMaxRotationPerSubstep = 0.25f * 3.14159265f;  // rad
+
 // Bodies [first, first + W) at once: records are contiguous, so the "gather" is W aligned
 // loads and a transpose. Callers pass whole blocks; slots of static bodies and free slots hold
 // zero velocity and an identity rotation, which integrate to themselves exactly.
@@ -30,6 +32,14 @@ SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceR
     v.r[k] = fmadd(L(h), f.r[k], v.r[k]) * f.r[3];
     v.r[k + 3] = v.r[k + 3] * f.r[4];
   }
+  // A body may turn at most a quarter turn per sub-step. Beyond it the first-order rotation
+  // update is meaningless and a joint anchored off the centre swings its anchor anywhere: links
+  // with tiny inertia and chains at 1/15 s steps exploded (energy x 1e7) before this bound.
+  const L w2 = fmadd(v.r[3], v.r[3], fmadd(v.r[4], v.r[4], v.r[5] * v.r[5]));
+  const L limit = L(kMaxRotationPerSubstep / h);
+  const auto fast = w2 > limit * limit;
+  const L scale = select(fast, limit / sqrt_lanes(select(fast, w2, L(1.0f))), L(1.0f));
+  for (int k = 3; k < 6; ++k) v.r[k] = v.r[k] * scale;
   scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));
 }
 

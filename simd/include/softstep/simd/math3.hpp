@@ -81,22 +81,29 @@ SOFTSTEP_INLINE Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const V
   return {dot(s0, c0), dot(s1, c1), dot(s2, c2), dot(s0, c1), dot(s0, c2), dot(s1, c2)};
 }
 
-// Inverse of a symmetric matrix by cofactors. A singular or non-finite matrix (a constraint
-// between two bodies that cannot move, or a padding lane) yields zero, so the constraint
-// applies no impulse instead of a NaN.
+// Inverse of a symmetric positive semi-definite matrix by cofactors, scaled first by its
+// largest diagonal entry: the determinant is a product of three entries and would leave the
+// float range (1e-38 .. 3e38) long before the entries do (a 1e13 kg body, a 1e-12 kg one).
+// A singular matrix (a constraint between bodies that cannot move, a padding lane) yields
+// zero, so the constraint applies no impulse instead of a NaN.
 template <class L>
-SOFTSTEP_INLINE Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& m) {
+SOFTSTEP_INLINE Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& k) {
+  const L scale = max_lanes(k.xx, max_lanes(k.yy, k.zz));
+  const auto usable = scale > L(0.0f);
+  const L inv_scale = select(usable, L(1.0f) / select(usable, scale, L(1.0f)), L(0.0f));
+  const Mat3Sym<L> m{k.xx * inv_scale, k.yy * inv_scale, k.zz * inv_scale,
+                     k.xy * inv_scale, k.xz * inv_scale, k.yz * inv_scale};
   const L c_xx = fmadd(m.yy, m.zz, L(0.0f) - m.yz * m.yz);
   const L c_xy = fmadd(m.xz, m.yz, L(0.0f) - m.xy * m.zz);
   const L c_xz = fmadd(m.xy, m.yz, L(0.0f) - m.xz * m.yy);
   const L det = fmadd(m.xx, c_xx, fmadd(m.xy, c_xy, m.xz * c_xz));
   const auto ok = det > L(0.0f);
-  const L inv_det = select(ok, L(1.0f) / select(ok, det, L(1.0f)), L(0.0f));
+  // inverse(k) = inverse(m) / scale
+  const L f = select(ok, inv_scale / select(ok, det, L(1.0f)), L(0.0f));
   const L c_yy = fmadd(m.xx, m.zz, L(0.0f) - m.xz * m.xz);
   const L c_yz = fmadd(m.xy, m.xz, L(0.0f) - m.xx * m.yz);
   const L c_zz = fmadd(m.xx, m.yy, L(0.0f) - m.xy * m.xy);
-  return {c_xx * inv_det, c_yy * inv_det, c_zz * inv_det,
-          c_xy * inv_det, c_xz * inv_det, c_yz * inv_det};
+  return {c_xx * f, c_yy * f, c_zz * f, c_xy * f, c_xz * f, c_yz * f};
 }
 
 // Unit quaternion (x, y, z, w).

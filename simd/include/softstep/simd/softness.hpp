@@ -36,7 +36,10 @@ SOFTSTEP_INLINE Softness<L> make_softness(const L& hertz, const L& zeta, float h
   const L a = hl * omega * safe_denom;
   const L inv_one_plus_a = L(1.0f) / (L(1.0f) + a);
   const auto stiff = active && a > L(0.0f);
-  return {select(active, omega / safe_denom, L(0.0f)), select(active, a * inv_one_plus_a, L(0.0f)),
+  // mass_scale = a / (1 + a) written as 1 - 1/(1 + a): the same where both are defined, and
+  // 1 (not inf * 0) when a overflows for an extreme frequency.
+  return {select(active, omega / safe_denom, L(0.0f)),
+          select(active, L(1.0f) - inv_one_plus_a, L(0.0f)),
           select(active, inv_one_plus_a, L(0.0f)),
           select(stiff, L(1.0f) / select(stiff, a, L(1.0f)), L(0.0f))};
 }
