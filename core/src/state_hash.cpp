@@ -46,6 +46,7 @@ std::uint64_t World::state_hash() const {
   h.value(s.rigid_hertz);
   h.value(s.rigid_damping_ratio);
   h.value(s.max_correction_speed);
+  h.value(s.geometric_stiffness);
   // Not hashed: simd and threads, which by design never change a result, so that runs at
   // different widths and thread counts can be compared by hash.
   h.value(w.bodies.size());

@@ -27,6 +27,13 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
 
 }  // namespace
 
+void World::Impl::geometric_inertia(float h, std::vector<double>& extra) const {
+  extra.assign(bodies.size(), 0.0);
+  if (!settings.geometric_stiffness || last_substep <= 0.0 || !joints_packed) return;
+  // |force| = |impulse of the last sub-step| / that sub-step
+  lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / last_substep, extra);
+}
+
 void World::Impl::prepare_bodies(float h) {
   SolverBodies& sb = solver_bodies;
   const std::size_t records = (bodies.size() + 1 + 7) / 8 * 8;
@@ -54,7 +61,15 @@ void World::Impl::prepare_bodies(float h) {
     simd::ForceRecord& f = sb.force[i];
     if (b.type == BodyType::Dynamic) {
       const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
-      const Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
+      Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
+      if (const double c = extra_inertia[s]; c > 0.0) {
+        // inverse(R I R^T + c 1) = R inverse(I + c 1) R^T
+        const Eigen::Matrix3d inv_body =
+            b.diagonal_inertia
+                ? Eigen::Matrix3d((b.inertia.diagonal().array() + c).inverse().matrix().asDiagonal())
+                : Eigen::Matrix3d((b.inertia + c * Eigen::Matrix3d::Identity()).inverse());
+        inv_i = r * inv_body * r.transpose();
+      }
       m = {static_cast<float>(1.0 / b.mass),
            {static_cast<float>(inv_i(0, 0)), static_cast<float>(inv_i(1, 1)),
             static_cast<float>(inv_i(2, 2)), static_cast<float>(inv_i(0, 1)),
@@ -105,6 +120,7 @@ void World::step(double dt) {
     w.joints_packed = true;
   }
   const simd::SubstepContext ctx = make_context(s, h);
+  w.geometric_inertia(h, w.extra_inertia);
   w.prepare_bodies(h);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;

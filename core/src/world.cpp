@@ -119,6 +119,7 @@ BodyId World::create_body(const BodyDef& def) {
   b.mass = dynamic ? def.mass : 0.0;
   b.inertia = dynamic ? def.inertia : Eigen::Matrix3d::Zero();
   b.inverse_inertia = dynamic ? Eigen::Matrix3d(def.inertia.inverse()) : Eigen::Matrix3d::Zero();
+  b.diagonal_inertia = b.inertia.isDiagonal(0.0);
   b.gravity_scale = def.gravity_scale;
   b.linear_damping = def.linear_damping;
   b.angular_damping = def.angular_damping;
@@ -199,6 +200,7 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
   b.mass = mass;
   b.inertia = inertia;
   b.inverse_inertia = inertia.inverse();
+  b.diagonal_inertia = inertia.isDiagonal(0.0);
 }
 
 std::size_t World::body_count() const {

@@ -23,6 +23,7 @@ struct BodySlot {
   double mass = 0.0;
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Zero();  // body frame; 0 unless dynamic
+  bool diagonal_inertia = true;  // body frame tensor is diagonal: I + c 1 inverts entrywise
   double gravity_scale = 1.0;
   double linear_damping = 0.0;
   double angular_damping = 0.0;
@@ -74,6 +75,9 @@ class LaneSolver {
   // Copies the lanes' impulses back into the slots (before a re-pack).
   virtual void save_impulses(std::vector<JointSlot>& joints) const = 0;
   virtual Eigen::Vector3f impulse(std::uint32_t joint_slot) const = 0;
+  // extra[body] += factor * |impulse| * |local anchor| for both bodies of every joint.
+  virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
+                                            std::vector<double>& extra) const = 0;
   // Writes the step-start anchors and the rows' softness coefficients.
   virtual void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                        const simd::SubstepContext& ctx) = 0;
@@ -104,9 +108,13 @@ struct World::Impl {
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;
+  std::vector<double> extra_inertia;  // per body slot, scratch for geometric_inertia
   double last_substep = 0.0;  // s, of the last step (for joint forces)
 
   void unpack_joints();  // save impulses to slots and mark for re-pack
+  // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment
+  // mode resolvable at sub-step h: h^2 sum over its joints of |force| |anchor offset|.
+  void geometric_inertia(float h, std::vector<double>& extra) const;
   void prepare_bodies(float h);
   void finalize_bodies();
 };

@@ -28,6 +28,14 @@ struct WorldSettings {
   // How fast a rigid row may correct position error, m/s, > 0: joints created apart close
   // at this speed instead of launching bodies.
   double max_correction_speed = 3.0;
+  // Stabilizes the alignment mode of bodies hinged off their centre under tension: a link
+  // hinged at r from its centre under tension T turns like a spring of frequency
+  // sqrt(T r / I), which a sub-step h can only follow while h sqrt(T r / I) < 2 (long chains,
+  // light links and big steps cross it and blow up). When on, each body's inertia in the
+  // solver is raised by h^2 sum(|F| |r|) over its joints (the diagonal geometric stiffness of
+  // Andrews, Teichmann and Kry 2017), which keeps that mode below 1/h and changes nothing
+  // where it was resolved. Joint forces are the previous step's.
+  bool geometric_stiffness = true;
   SimdWidth simd = SimdWidth::Best;
 };
 

@@ -136,6 +136,19 @@ class LaneSolverImpl final : public LaneSolver {
     return ball ? lane_impulse(c.ball[r.group], r.lane) : lane_impulse(c.distance[r.group], r.lane);
   }
 
+  void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
+                                    std::vector<double>& extra) const override {
+    for_each_lane([&](const auto& group, int lane, std::uint32_t slot) {
+      const Eigen::Vector3f p = lane_impulse(group, static_cast<std::uint32_t>(lane));
+      constexpr bool ball = requires { group.impulse[0][0]; };
+      const double magnitude = ball ? double(p.norm()) : std::abs(double(p.x() + p.y() - p.z()));
+      if (magnitude == 0.0) return;
+      const JointSlot& j = joints[slot];
+      extra[j.body_a] += factor * magnitude * j.local_anchor_a.norm();
+      extra[j.body_b] += factor * magnitude * j.local_anchor_b.norm();
+    });
+  }
+
   void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                const simd::SubstepContext& ctx) override {
     for_each_lane([&](auto& group, int lane, std::uint32_t joint) {
@@ -207,22 +220,31 @@ class LaneSolverImpl final : public LaneSolver {
 
   // Visits every real lane (ball groups, then distance groups; colours, then overflow) in
   // the order add_members recorded them in lane_joint_.
-  template <class F>
-  void for_each_lane(F&& f) {
+  // Self is LaneSolverImpl or const LaneSolverImpl: one visitor for reading and writing.
+  template <class Self, class F>
+  static void visit_lanes(Self& self, F&& f) {
     std::size_t k = 0;
     const auto visit = [&](auto& groups, int width) {
       for (auto& g : groups) {
         for (int lane = 0; lane < width; ++lane, ++k) {
-          if (lane_joint_[k] != kPadding) f(g, lane, lane_joint_[k]);
+          if (self.lane_joint_[k] != kPadding) f(g, lane, self.lane_joint_[k]);
         }
       }
     };
-    for (auto& c : colors_) {
+    for (auto& c : self.colors_) {
       visit(c.ball, W);
       visit(c.distance, W);
     }
-    visit(overflow_.ball, 1);
-    visit(overflow_.distance, 1);
+    visit(self.overflow_.ball, 1);
+    visit(self.overflow_.distance, 1);
+  }
+  template <class F>
+  void for_each_lane(F&& f) {
+    visit_lanes(*this, f);
+  }
+  template <class F>
+  void for_each_lane(F&& f) const {
+    visit_lanes(*this, f);
   }
 
   static constexpr std::uint32_t kPadding = 0xFFFFFFFFu;
