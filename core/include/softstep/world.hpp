@@ -1,5 +1,6 @@
 // The world: bodies, joints and the Soft Step solver. Not thread-safe: one thread calls it
-// at a time (the solver itself may use several).
+// at a time. (WorldSettings::threads is kept for the parallel step; today every step runs on
+// the calling thread.)
 #pragma once
 
 #include <cstdint>

@@ -19,7 +19,7 @@ struct WorldSettings {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   int substeps = 4;                          // >= 1: sub-steps per step(dt), each a full solve
   int relax_iterations = 1;  // >= 0: rigid, unbiased passes per sub-step after positions move
-  int threads = 1;           // >= 1
+  int threads = 1;           // >= 1; not used yet: every step runs on the calling thread
   bool warm_start = true;    // start each sub-step from the previous sub-step's impulses
   // Rigid rows are solved as a stiff spring (and relaxed with none). Its frequency is capped
   // at a quarter of the sub-step rate, so it cannot overshoot: Hz, > 0.
