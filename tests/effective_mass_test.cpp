@@ -48,6 +48,12 @@ Vec3<float> lanes(const Eigen::Vector3d& v) {
   return {float(v.x()), float(v.y()), float(v.z())};
 }
 
+Eigen::Matrix3d matrix(const Mat3Sym<float>& m) {
+  Eigen::Matrix3d r;
+  r << m.xx, m.xy, m.xz, m.xy, m.yy, m.yz, m.xz, m.yz, m.zz;
+  return r;
+}
+
 TEST(EffectiveMass, UnitImpulseExperimentMatchesKernels) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -60,9 +66,7 @@ TEST(EffectiveMass, UnitImpulseExperimentMatchesKernels) {
     const Mat3Sym<float> k_inv =
         inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
                                float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r));
-    Eigen::Matrix3d k_inv_m;
-    k_inv_m << k_inv.xx, k_inv.xy, k_inv.xz, k_inv.xy, k_inv.yy, k_inv.yz, k_inv.xz, k_inv.yz,
-        k_inv.zz;
+    const Eigen::Matrix3d k_inv_m = matrix(k_inv);
     EXPECT_NEAR(1.0 / n.dot(k_inv_m.inverse() * n), expected, 2e-4 * expected) << "trial " << trial;
 
     // Distance joint along n: its axial mass is the same quantity.
@@ -89,9 +93,7 @@ TEST(EffectiveMass, ExtremeMassesStayAccurate) {
     const Mat3Sym<float> k_inv =
         inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
                                float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r));
-    Eigen::Matrix3d k_inv_m;
-    k_inv_m << k_inv.xx, k_inv.xy, k_inv.xz, k_inv.xy, k_inv.yy, k_inv.yz, k_inv.xz, k_inv.yz,
-        k_inv.zz;
+    const Eigen::Matrix3d k_inv_m = matrix(k_inv);
     ASSERT_TRUE(k_inv_m.allFinite()) << "scale " << scale;
     EXPECT_NEAR(1.0 / n.dot(k_inv_m.inverse() * n), expected, 2e-4 * expected) << "scale " << scale;
   }

@@ -2,6 +2,9 @@
 // limits, springs at rest, kinematic drivers, and what destroying a body takes with it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "scenes/hard_cases.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
@@ -184,45 +187,22 @@ TEST(Settings, WarmStartOffStillHoldsAChain) {
 namespace softstep {
 namespace {
 
-// A chain of 1 kg links hinged 0.125 m off their centres, at 1/15 s with one sub-step: the
-// alignment mode (frequency sqrt(T r / I)) is 5x faster than the sub-step can follow. With
-// the geometric-stiffness inertia it stays within its derived stretch; without, it blows up.
-double big_step_chain_error(bool geometric_stiffness) {
-  WorldSettings s;
-  s.substeps = 1;
-  s.geometric_stiffness = geometric_stiffness;
-  World world(s);
-  BodyDef ground;
-  ground.type = BodyType::Static;
-  BodyId previous = world.create_body(ground);
-  std::vector<JointId> joints;
-  const Eigen::Vector3d step(0.25 * std::sin(0.5), -0.25 * std::cos(0.5), 0.0);
-  for (int i = 1; i <= 20; ++i) {
-    BodyDef link;
-    link.position = i * step;
-    const BodyId body = world.create_body(link);
-    BallJointDef j;
-    j.body_a = previous;
-    j.body_b = body;
-    j.local_anchor_a = i == 1 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(0.5 * step);
-    j.local_anchor_b = -0.5 * step;
-    joints.push_back(world.create_ball_joint(j));
-    previous = body;
-  }
-  double worst = 0.0;
-  for (int i = 0; i < 600; ++i) {
-    world.step(1.0 / 15.0);
-    for (JointId j : joints) worst = std::max(worst, world.joint_reading(j).error);
-  }
-  return worst;
-}
-
+// The hard case "big steps" (20 links hinged 0.125 m off their centres, 1/15 s, one
+// sub-step) has an alignment mode 5x faster than the sub-step can follow. It stays within its
+// derived bounds with the geometric-stiffness inertia and blows up without it.
 TEST(GeometricStiffness, HoldsAChainAtBigSteps) {
-  // Derived bound (hard_cases.hpp): 3x the static stretch of the most loaded joint,
-  // 3 * 2 * 19 * g / omega^2 with omega = 2 pi * 15/4 Hz: about 2 m.
-  const double omega = 2.0 * 3.14159265358979 * 15.0 / 4.0;
-  EXPECT_LT(big_step_chain_error(true), 3.0 * 2.0 * 19.0 * 9.81 / (omega * omega));
-  EXPECT_GT(big_step_chain_error(false), 10.0);  // the failure it exists to prevent
+  const auto cases = scenes::hard_cases();
+  const auto big_steps =
+      std::find_if(cases.begin(), cases.end(), [](const auto& c) { return c.name == "big steps"; });
+  ASSERT_NE(big_steps, cases.end());
+  WorldSettings s;
+  s.geometric_stiffness = true;
+  const scenes::HardCaseOutcome on = big_steps->run(s);
+  EXPECT_TRUE(on.passed()) << "error " << on.figures.joint_error << " m (bound "
+                           << on.bounds.joint_error << ")";
+  s.geometric_stiffness = false;
+  const scenes::HardCaseOutcome off = big_steps->run(s);
+  EXPECT_GT(off.figures.joint_error, 10.0 * off.bounds.joint_error);  // the failure it prevents
 }
 
 }  // namespace
