@@ -77,3 +77,36 @@ TEST(SimdWidths, LayoutReportsTheLaneCount) {
 
 }  // namespace
 }  // namespace softstep
+
+namespace softstep {
+namespace {
+
+// Colours split statically over the threads with a barrier per colour and the overflow set on
+// one thread: the result cannot depend on the thread count (DESIGN.md, "Parallel and
+// deterministic"). The chain is big enough (6,001 bodies and joints) that two threads do run.
+TEST(Threads, TwoThreadsAreBitIdenticalToOneAtEveryWidth) {
+  const auto run = [](int threads, SimdWidth width) {
+    WorldSettings s;
+    s.threads = threads;
+    s.simd = width;
+    World world(s);
+    scenes::ChainOptions o;
+    o.links = 3000;
+    o.spring = Spring::soft(20.0, 0.5);
+    scenes::build_chain(world, o);
+    for (int i = 0; i < 100; ++i) world.step(1.0 / 60.0);
+    return world.state_hash();
+  };
+  const std::uint64_t reference = run(1, SimdWidth::Scalar);
+  for (SimdWidth w : {SimdWidth::Scalar, SimdWidth::Sse, SimdWidth::Avx2}) {
+    try {
+      EXPECT_EQ(run(2, w), reference) << simd_width_name(w);
+      EXPECT_EQ(run(1, w), reference) << simd_width_name(w);
+    } catch (const InvalidArgument&) {
+      // width not available on this CPU
+    }
+  }
+}
+
+}  // namespace
+}  // namespace softstep

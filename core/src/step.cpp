@@ -3,8 +3,11 @@
 //   per sub-step: integrate velocities, warm start, solve (soft, biased),
 //                 integrate positions, relax (rigid, no bias)
 //   store: write the double-precision poses and velocities back
+#include <omp.h>
+
 #include <cmath>
 
+#include "solver/team.hpp"
 #include "validation.hpp"
 #include "world_impl.hpp"
 
@@ -25,6 +28,16 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
   return ctx;
 }
 
+// Threads for this step: the setting, or one when the work is too small to share. Below a
+// few thousand bodies and joints a step takes tens of microseconds, and a barrier per colour
+// per stage (0.4-1 us each on an idle machine, 10-170 us when another process holds a core,
+// TOOLCHAIN.md) would cost more than the second core gives.
+int step_threads(const World::Impl& w) {
+  constexpr std::size_t kMinWorkToShare = 4096;
+  if (w.settings.threads <= 1 || w.body_count + w.joint_count < kMinWorkToShare) return 1;
+  return w.settings.threads;
+}
+
 }  // namespace
 
 void World::Impl::geometric_inertia(float h, std::vector<double>& extra) const {
@@ -34,21 +47,26 @@ void World::Impl::geometric_inertia(float h, std::vector<double>& extra) const {
   lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / last_substep, extra);
 }
 
-void World::Impl::prepare_bodies(float h) {
+void World::Impl::list_bodies() {
   SolverBodies& sb = solver_bodies;
   const std::size_t records = (bodies.size() + 1 + 7) / 8 * 8;
-  if (!bodies_listed || sb.velocity.size() != records) {
-    sb.velocity.assign(records, simd::VelocityRecord{});
-    sb.delta.assign(records, simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0});
-    sb.mass.assign(records, simd::MassRecord{});
-    sb.force.assign(records, simd::ForceRecord{});
-    sb.movable.clear();
-    for (std::uint32_t s = 0; s < bodies.size(); ++s) {
-      if (bodies[s].alive && bodies[s].type != BodyType::Static) sb.movable.push_back(s);
-    }
-    bodies_listed = true;
+  if (bodies_listed && sb.velocity.size() == records) return;
+  sb.velocity.assign(records, simd::VelocityRecord{});
+  sb.delta.assign(records, simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0});
+  sb.mass.assign(records, simd::MassRecord{});
+  sb.force.assign(records, simd::ForceRecord{});
+  sb.movable.clear();
+  for (std::uint32_t s = 0; s < bodies.size(); ++s) {
+    if (bodies[s].alive && bodies[s].type != BodyType::Static) sb.movable.push_back(s);
   }
-  for (std::uint32_t s : sb.movable) {
+  bodies_listed = true;
+}
+
+void World::Impl::prepare_bodies(float h, const solver::Share& share) {
+  SolverBodies& sb = solver_bodies;
+  const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
+  for (std::size_t index = mine.begin; index < mine.end; ++index) {
+    const std::uint32_t s = sb.movable[index];
     const BodySlot& b = bodies[s];
     const std::size_t i = s + 1;
     simd::VelocityRecord& v = sb.velocity[i];
@@ -66,7 +84,8 @@ void World::Impl::prepare_bodies(float h) {
         // inverse(R I R^T + c 1) = R inverse(I + c 1) R^T
         const Eigen::Matrix3d inv_body =
             b.diagonal_inertia
-                ? Eigen::Matrix3d((b.inertia.diagonal().array() + c).inverse().matrix().asDiagonal())
+                ? Eigen::Matrix3d(
+                      (b.inertia.diagonal().array() + c).inverse().matrix().asDiagonal())
                 : Eigen::Matrix3d((b.inertia + c * Eigen::Matrix3d::Identity()).inverse());
         inv_i = r * inv_body * r.transpose();
       }
@@ -87,9 +106,11 @@ void World::Impl::prepare_bodies(float h) {
   }
 }
 
-void World::Impl::finalize_bodies() {
+void World::Impl::finalize_bodies(const solver::Share& share) {
   SolverBodies& sb = solver_bodies;
-  for (std::uint32_t s : sb.movable) {
+  const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
+  for (std::size_t index = mine.begin; index < mine.end; ++index) {
+    const std::uint32_t s = sb.movable[index];
     BodySlot& b = bodies[s];
     const simd::VelocityRecord& v = sb.velocity[s + 1];
     const simd::DeltaRecord& d = sb.delta[s + 1];
@@ -120,28 +141,48 @@ void World::step(double dt) {
     w.joints_packed = true;
   }
   const simd::SubstepContext ctx = make_context(s, h);
+  // Serial: sizing the records, and the geometric inertia (joints add into shared bodies).
+  w.list_bodies();
   w.geometric_inertia(h, w.extra_inertia);
-  w.prepare_bodies(h);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
   const bool has_joints = w.joint_count > 0;
-  if (has_joints) solver.prepare(w.joints, w.bodies, ctx);
-  for (int sub = 0; sub < s.substeps; ++sub) {
-    solver.integrate_velocities(w.solver_bodies, h);
+
+  // Every thread runs every stage on its share; team_barrier orders the stages.
+  const auto run = [&](const solver::Share& share) {
+    w.prepare_bodies(h, share);
+    solver::team_barrier(share);
     if (has_joints) {
-      if (s.warm_start) {
-        solver.warm_start(arrays);
-      } else {
-        solver.clear_impulses();
+      solver.prepare(w.joints, w.bodies, ctx, share);
+      solver::team_barrier(share);
+    }
+    for (int sub = 0; sub < s.substeps; ++sub) {
+      solver.integrate_velocities(w.solver_bodies, h, share);
+      solver::team_barrier(share);
+      if (has_joints) {
+        if (s.warm_start) {
+          solver.warm_start(arrays, share);
+        } else {
+          solver.clear_impulses(share);
+          solver::team_barrier(share);
+        }
+        solver.solve(arrays, ctx, share);
       }
-      solver.solve(arrays, ctx);
+      solver.integrate_positions(w.solver_bodies, h, share);
+      solver::team_barrier(share);
+      if (has_joints) {
+        for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
+      }
     }
-    solver.integrate_positions(w.solver_bodies, h);
-    if (has_joints) {
-      for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx);
-    }
+    w.finalize_bodies(share);
+  };
+  const int threads = step_threads(w);
+  if (threads == 1) {
+    run(solver::Share{});
+  } else {
+#pragma omp parallel num_threads(threads)
+    run(solver::Share{omp_get_thread_num(), omp_get_num_threads()});
   }
-  w.finalize_bodies();
   w.last_substep = h;
 }
 

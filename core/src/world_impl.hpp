@@ -9,6 +9,7 @@
 #include "softstep/simd/body_integration.hpp"
 #include "softstep/simd/step_context.hpp"
 #include "softstep/world.hpp"
+#include "solver/joint_batches.hpp"
 
 namespace softstep {
 
@@ -78,15 +79,20 @@ class LaneSolver {
   // extra[body] += factor * |impulse| * |local anchor| for both bodies of every joint.
   virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
                                             std::vector<double>& extra) const = 0;
+  // The stages of a step. Every thread of the step calls each with its Share; the stages
+  // that run colour by colour meet at a barrier after each colour and after the overflow set,
+  // the others touch only the thread's own groups or bodies (callers put the barriers).
   // Writes the step-start anchors and the rows' softness coefficients.
   virtual void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-                       const simd::SubstepContext& ctx) = 0;
-  virtual void warm_start(const simd::BodyArrays& arrays) = 0;
-  virtual void clear_impulses() = 0;
-  virtual void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
-  virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) = 0;
-  virtual void integrate_velocities(SolverBodies& bodies, float h) = 0;
-  virtual void integrate_positions(SolverBodies& bodies, float h) = 0;
+                       const simd::SubstepContext& ctx, const solver::Share& share) = 0;
+  virtual void warm_start(const simd::BodyArrays& arrays, const solver::Share& share) = 0;
+  virtual void clear_impulses(const solver::Share& share) = 0;
+  virtual void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+                     const solver::Share& share) = 0;
+  virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+                     const solver::Share& share) = 0;
+  virtual void integrate_velocities(SolverBodies& bodies, float h, const solver::Share& share) = 0;
+  virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
 
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
@@ -109,14 +115,15 @@ struct World::Impl {
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;
   std::vector<double> extra_inertia;  // per body slot, scratch for geometric_inertia
-  double last_substep = 0.0;  // s, of the last step (for joint forces)
+  double last_substep = 0.0;          // s, of the last step (for joint forces)
 
   void unpack_joints();  // save impulses to slots and mark for re-pack
   // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment
   // mode resolvable at sub-step h: h^2 sum over its joints of |force| |anchor offset|.
   void geometric_inertia(float h, std::vector<double>& extra) const;
-  void prepare_bodies(float h);
-  void finalize_bodies();
+  void list_bodies();  // (re)sizes the records and the movable list after body changes
+  void prepare_bodies(float h, const solver::Share& share);
+  void finalize_bodies(const solver::Share& share);
 };
 
 }  // namespace softstep

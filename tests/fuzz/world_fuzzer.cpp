@@ -19,20 +19,26 @@ using softstep::BodyId;
 using softstep::JointId;
 
 double value(FuzzedDataProvider& in) {
-  static constexpr double kSpecial[] = {0.0,   -0.0,  1.0,   -1.0,  0.25,   1e-300, -1e-300, 1e-30,
-                                        1e-9,  1e6,   1e12,  1e18,  1e19,   1e300,  -1e300,  INFINITY,
-                                        -INFINITY, NAN, 3.5e38, 1e-45, 60.0, 0.5, 2.0, 1e30};
-  if (in.ConsumeBool()) return kSpecial[in.ConsumeIntegralInRange<std::size_t>(0, std::size(kSpecial) - 1)];
+  static constexpr double kSpecial[] = {
+      0.0,  -0.0,  1.0,    -1.0,     0.25,      1e-300, -1e-300, 1e-30, 1e-9, 1e6, 1e12, 1e18,
+      1e19, 1e300, -1e300, INFINITY, -INFINITY, NAN,    3.5e38,  1e-45, 60.0, 0.5, 2.0,  1e30};
+  if (in.ConsumeBool())
+    return kSpecial[in.ConsumeIntegralInRange<std::size_t>(0, std::size(kSpecial) - 1)];
   return in.ConsumeFloatingPointInRange<double>(-100.0, 100.0);
 }
 
-Eigen::Vector3d vec(FuzzedDataProvider& in) { return {value(in), value(in), value(in)}; }
+Eigen::Vector3d vec(FuzzedDataProvider& in) {
+  return {value(in), value(in), value(in)};
+}
 
 softstep::Spring spring(FuzzedDataProvider& in) {
   switch (in.ConsumeIntegralInRange<int>(0, 3)) {
-    case 0: return softstep::Spring::rigid();
-    case 1: return softstep::Spring::free();
-    default: return softstep::Spring::soft(value(in), value(in));
+    case 0:
+      return softstep::Spring::rigid();
+    case 1:
+      return softstep::Spring::free();
+    default:
+      return softstep::Spring::soft(value(in), value(in));
   }
 }
 
@@ -53,8 +59,8 @@ void check_finite(const softstep::World& w, const std::vector<BodyId>& bodies) {
   for (BodyId b : bodies) {
     if (!w.is_valid(b)) continue;
     const softstep::BodyState s = w.body(b);
-    if (!s.position.allFinite() || !s.linear_velocity.allFinite() || !s.angular_velocity.allFinite() ||
-        !s.orientation.coeffs().allFinite()) {
+    if (!s.position.allFinite() || !s.linear_velocity.allFinite() ||
+        !s.angular_velocity.allFinite() || !s.orientation.coeffs().allFinite()) {
       fail("a world built from accepted calls holds a non-finite body after a step");
     }
   }
@@ -73,10 +79,11 @@ void dump(const softstep::World& w, const std::vector<BodyId>& bodies) {
   for (BodyId b : bodies) {
     if (!w.is_valid(b)) continue;
     const softstep::BodyState s = w.body(b);
-    std::fprintf(stderr, "  body %u type %d m %g p (%g %g %g) v (%g %g %g) w (%g %g %g) I00 %g\n", b.index,
-                 static_cast<int>(s.type), s.mass, s.position.x(), s.position.y(), s.position.z(),
-                 s.linear_velocity.x(), s.linear_velocity.y(), s.linear_velocity.z(), s.angular_velocity.x(),
-                 s.angular_velocity.y(), s.angular_velocity.z(), s.inertia(0, 0));
+    std::fprintf(stderr, "  body %u type %d m %g p (%g %g %g) v (%g %g %g) w (%g %g %g) I00 %g\n",
+                 b.index, static_cast<int>(s.type), s.mass, s.position.x(), s.position.y(),
+                 s.position.z(), s.linear_velocity.x(), s.linear_velocity.y(),
+                 s.linear_velocity.z(), s.angular_velocity.x(), s.angular_velocity.y(),
+                 s.angular_velocity.z(), s.inertia(0, 0));
   }
 }
 
@@ -112,7 +119,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           bodies.push_back(world.create_body(d));
           break;
         }
-        case 2: world.destroy_body(pick(in, bodies)); break;
+        case 2:
+          world.destroy_body(pick(in, bodies));
+          break;
         case 3:
         case 4: {
           if (joints.size() >= 48) break;
@@ -138,15 +147,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           }
           break;
         }
-        case 5: world.destroy_joint(pick(in, joints)); break;
+        case 5:
+          world.destroy_joint(pick(in, joints));
+          break;
         case 6: {
           const BodyId b = pick(in, bodies);
           switch (in.ConsumeIntegralInRange<int>(0, 4)) {
-            case 0: world.set_position(b, vec(in)); break;
-            case 1: world.set_orientation(b, softstep::Quaternion(value(in), value(in), value(in), value(in))); break;
-            case 2: world.set_linear_velocity(b, vec(in)); break;
-            case 3: world.set_angular_velocity(b, vec(in)); break;
-            default: world.set_mass_properties(b, value(in), softstep::solid_sphere_inertia(1.0, value(in))); break;
+            case 0:
+              world.set_position(b, vec(in));
+              break;
+            case 1:
+              world.set_orientation(
+                  b, softstep::Quaternion(value(in), value(in), value(in), value(in)));
+              break;
+            case 2:
+              world.set_linear_velocity(b, vec(in));
+              break;
+            case 3:
+              world.set_angular_velocity(b, vec(in));
+              break;
+            default:
+              world.set_mass_properties(b, value(in),
+                                        softstep::solid_sphere_inertia(1.0, value(in)));
+              break;
           }
           break;
         }
@@ -165,8 +188,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           const double dt = in.ConsumeBool() ? 1.0 / 60.0 : value(in);
           world.step(dt);
           if (verbose()) {
-            std::fprintf(stderr, "step %g (substeps %d, joints %zu)\n", dt, world.settings().substeps,
-                         world.joint_count());
+            std::fprintf(stderr, "step %g (substeps %d, joints %zu)\n", dt,
+                         world.settings().substeps, world.joint_count());
             dump(world, bodies);
           }
           check_finite(world, bodies);

@@ -1,6 +1,6 @@
 // The world: bodies, joints and the Soft Step solver. Not thread-safe: one thread calls it
-// at a time. (WorldSettings::threads is kept for the parallel step; today every step runs on
-// the calling thread.)
+// at a time; step() itself uses WorldSettings::threads threads (OpenMP), with results that
+// do not depend on how many.
 #pragma once
 
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "solver/joint_batches.hpp"
+#include "solver/team.hpp"
 #include "world_impl.hpp"
 
 namespace softstep {
@@ -20,7 +21,9 @@ struct LaneRef {
 };
 
 template <int W, class Group>
-void fill_common_lane(Group& g, int lane, const JointSlot& j, const std::vector<BodySlot>& bodies) {
+void fill_common_lane(Group& g, int lane, std::uint32_t slot, const JointSlot& j,
+                      const std::vector<BodySlot>& bodies) {
+  g.id[lane] = slot;
   g.body_a[lane] = solver_index(bodies[j.body_a], j.body_a);
   g.body_b[lane] = solver_index(bodies[j.body_b], j.body_b);
   g.hertz[lane] = static_cast<float>(j.spring.hertz);
@@ -31,20 +34,21 @@ void fill_common_lane(Group& g, int lane, const JointSlot& j, const std::vector<
 template <class Group>
 Group empty_group() {
   Group g{};
+  std::fill(std::begin(g.id), std::end(g.id), simd::kPaddingLane);
   return g;
 }
 
 template <int W>
-void fill_lane(simd::BallJointGroup<W>& g, int lane, const JointSlot& j,
+void fill_lane(simd::BallJointGroup<W>& g, int lane, std::uint32_t slot, const JointSlot& j,
                const std::vector<BodySlot>& bodies) {
-  fill_common_lane<W>(g, lane, j, bodies);
+  fill_common_lane<W>(g, lane, slot, j, bodies);
   for (int k = 0; k < 3; ++k) g.impulse[k][lane] = j.impulse[k];
 }
 
 template <int W>
-void fill_lane(simd::DistanceJointGroup<W>& g, int lane, const JointSlot& j,
+void fill_lane(simd::DistanceJointGroup<W>& g, int lane, std::uint32_t slot, const JointSlot& j,
                const std::vector<BodySlot>& bodies) {
-  fill_common_lane<W>(g, lane, j, bodies);
+  fill_common_lane<W>(g, lane, slot, j, bodies);
   const bool rigid = j.spring.is_rigid();
   g.rest_length[lane] = static_cast<float>(j.rest_length);
   g.min_length[lane] = static_cast<float>(j.min_length);
@@ -108,7 +112,6 @@ class LaneSolverImpl final : public LaneSolver {
     lane_of_.assign(joints.size(), LaneRef{});
     lane_known_.assign(joints.size(), false);
     lane_is_ball_.assign(joints.size(), false);
-    lane_joint_.clear();
     for (int c = 0; c < graph_coloring::kColorCount; ++c) {
       const auto members = coloring.members(c);
       if (members.empty()) continue;
@@ -140,7 +143,9 @@ class LaneSolverImpl final : public LaneSolver {
                                     std::vector<double>& extra) const override {
     for_each_lane([&](const auto& group, int lane, std::uint32_t slot) {
       const Eigen::Vector3f p = lane_impulse(group, static_cast<std::uint32_t>(lane));
-      constexpr bool ball = requires { group.impulse[0][0]; };
+      constexpr bool ball = requires {
+        group.impulse[0][0];
+      };
       const double magnitude = ball ? double(p.norm()) : std::abs(double(p.x() + p.y() - p.z()));
       if (magnitude == 0.0) return;
       const JointSlot& j = joints[slot];
@@ -150,47 +155,76 @@ class LaneSolverImpl final : public LaneSolver {
   }
 
   void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-               const simd::SubstepContext& ctx) override {
-    for_each_lane([&](auto& group, int lane, std::uint32_t joint) {
+               const simd::SubstepContext& ctx, const solver::Share& share) override {
+    visit_lanes(*this, share, [&](auto& group, int lane, std::uint32_t joint) {
       write_anchors(group, lane, joints[joint], bodies);
     });
-    for (auto& c : colors_) kernels_.prepare(c, ctx);
-    scalar_.prepare(overflow_, ctx);
+    for (auto& c : colors_) kernels_.prepare(c, ctx, share);
+    if (share.thread == 0) scalar_.prepare(overflow_, ctx, solver::Share{});
   }
 
-  void warm_start(const simd::BodyArrays& arrays) override {
-    for (auto& c : colors_) kernels_.warm_start(c, arrays);
-    scalar_.warm_start(overflow_, arrays);
+  void warm_start(const simd::BodyArrays& arrays, const solver::Share& share) override {
+    run_colors(
+        share, [&](ColorBatches<W>& c) { kernels_.warm_start(c, arrays, share); },
+        [&] { scalar_.warm_start(overflow_, arrays, solver::Share{}); });
   }
 
-  void clear_impulses() override {
-    for (auto& c : colors_) {
-      for (auto& g : c.ball) zero_impulses(g);
-      for (auto& g : c.distance) zero_impulses(g);
-    }
-    for (auto& g : overflow_.ball) zero_impulses(g);
-    for (auto& g : overflow_.distance) zero_impulses(g);
+  void clear_impulses(const solver::Share& share) override {
+    visit_groups(share, [](auto& g) { zero_impulses(g); });
   }
 
-  void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) override {
-    for (auto& c : colors_) kernels_.solve(c, arrays, ctx);
-    scalar_.solve(overflow_, arrays, ctx);
+  void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+             const solver::Share& share) override {
+    run_colors(
+        share, [&](ColorBatches<W>& c) { kernels_.solve(c, arrays, ctx, share); },
+        [&] { scalar_.solve(overflow_, arrays, ctx, solver::Share{}); });
   }
 
-  void integrate_velocities(SolverBodies& b, float h) override {
-    kernels_.integrate_velocities(b.velocity.data(), b.force.data(), b.padded_count(), h);
+  void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+             const solver::Share& share) override {
+    run_colors(
+        share, [&](ColorBatches<W>& c) { kernels_.relax(c, arrays, ctx, share); },
+        [&] { scalar_.relax(overflow_, arrays, ctx, solver::Share{}); });
   }
 
-  void integrate_positions(SolverBodies& b, float h) override {
-    kernels_.integrate_positions(b.delta.data(), b.velocity.data(), b.padded_count(), h);
+  void integrate_velocities(SolverBodies& b, float h, const solver::Share& share) override {
+    kernels_.integrate_velocities(b.velocity.data(), b.force.data(), b.padded_count(), h, share);
   }
 
-  void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx) override {
-    for (auto& c : colors_) kernels_.relax(c, arrays, ctx);
-    scalar_.relax(overflow_, arrays, ctx);
+  void integrate_positions(SolverBodies& b, float h, const solver::Share& share) override {
+    kernels_.integrate_positions(b.delta.data(), b.velocity.data(), b.padded_count(), h, share);
   }
 
  private:
+  // Colour by colour, each thread its share, a barrier after each colour (joints of the next
+  // colour read bodies this one wrote); then the overflow set on thread 0, in order.
+  template <class ColorStage, class OverflowStage>
+  void run_colors(const solver::Share& share, ColorStage&& color_stage,
+                  OverflowStage&& overflow_stage) {
+    for (auto& c : colors_) {
+      color_stage(c);
+      team_barrier(share);
+    }
+    if (!overflow_.ball.empty() || !overflow_.distance.empty()) {
+      if (share.thread == 0) overflow_stage();
+      team_barrier(share);
+    }
+  }
+
+  template <class F>
+  void visit_groups(const solver::Share& share, F&& f) {
+    for (auto& c : colors_) {
+      const solver::Slice b = solver::slice_of(c.ball.size(), share);
+      for (std::size_t i = b.begin; i < b.end; ++i) f(c.ball[i]);
+      const solver::Slice d = solver::slice_of(c.distance.size(), share);
+      for (std::size_t i = d.begin; i < d.end; ++i) f(c.distance[i]);
+    }
+    if (share.thread == 0) {
+      for (auto& g : overflow_.ball) f(g);
+      for (auto& g : overflow_.distance) f(g);
+    }
+  }
+
   template <int V>
   void add_members(ColorBatches<V>& batches, std::span<const std::uint32_t> members,
                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
@@ -206,9 +240,8 @@ class LaneSolverImpl final : public LaneSolver {
         const std::uint32_t j = lanes[i];
         const auto group = static_cast<std::uint32_t>(i / V);
         const auto lane = static_cast<std::uint32_t>(i % V);
-        lane_joint_.push_back(j);
         if (j == kPadding) continue;
-        fill_lane<V>(groups[group], static_cast<int>(lane), joints[j], bodies);
+        fill_lane<V>(groups[group], static_cast<int>(lane), j, joints[j], bodies);
         lane_of_[j] = {overflow, color, group, lane};
         lane_known_[j] = true;
         lane_is_ball_[j] = is_ball;
@@ -218,36 +251,34 @@ class LaneSolverImpl final : public LaneSolver {
     place(batches.distance, distance, false);
   }
 
-  // Visits every real lane (ball groups, then distance groups; colours, then overflow) in
-  // the order add_members recorded them in lane_joint_.
-  // Self is LaneSolverImpl or const LaneSolverImpl: one visitor for reading and writing.
+  // Visits every real lane of this thread's share of the groups of every colour, then (on
+  // thread 0 only) of the overflow set. Self is LaneSolverImpl or const LaneSolverImpl.
   template <class Self, class F>
-  static void visit_lanes(Self& self, F&& f) {
-    std::size_t k = 0;
-    const auto visit = [&](auto& groups, int width) {
-      for (auto& g : groups) {
-        for (int lane = 0; lane < width; ++lane, ++k) {
-          if (self.lane_joint_[k] != kPadding) f(g, lane, self.lane_joint_[k]);
+  static void visit_lanes(Self& self, const solver::Share& share, F&& f) {
+    const auto visit = [&](auto& groups, int width, const solver::Share& part) {
+      const solver::Slice slice = solver::slice_of(groups.size(), part);
+      for (std::size_t i = slice.begin; i < slice.end; ++i) {
+        auto& g = groups[i];
+        for (int lane = 0; lane < width; ++lane) {
+          if (g.id[lane] != kPadding) f(g, lane, g.id[lane]);
         }
       }
     };
     for (auto& c : self.colors_) {
-      visit(c.ball, W);
-      visit(c.distance, W);
+      visit(c.ball, W, share);
+      visit(c.distance, W, share);
     }
-    visit(self.overflow_.ball, 1);
-    visit(self.overflow_.distance, 1);
-  }
-  template <class F>
-  void for_each_lane(F&& f) {
-    visit_lanes(*this, f);
+    if (share.thread == 0) {
+      visit(self.overflow_.ball, 1, solver::Share{});
+      visit(self.overflow_.distance, 1, solver::Share{});
+    }
   }
   template <class F>
   void for_each_lane(F&& f) const {
-    visit_lanes(*this, f);
+    visit_lanes(*this, solver::Share{}, f);
   }
 
-  static constexpr std::uint32_t kPadding = 0xFFFFFFFFu;
+  static constexpr std::uint32_t kPadding = simd::kPaddingLane;
   KernelTable<W> kernels_;
   KernelTable<1> scalar_;
   std::vector<ColorBatches<W>> colors_;
@@ -255,7 +286,6 @@ class LaneSolverImpl final : public LaneSolver {
   std::vector<LaneRef> lane_of_;
   std::vector<bool> lane_known_;
   std::vector<bool> lane_is_ball_;
-  std::vector<std::uint32_t> lane_joint_;  // joint slot of every lane in visiting order
 };
 
 }  // namespace

@@ -9,8 +9,12 @@
 
 namespace softstep::simd {
 
+// Marks a padding lane in JointLanes::id.
+inline constexpr std::uint32_t kPaddingLane = 0xFFFFFFFFu;
+
 template <int W>
 struct alignas(32) JointLanes {
+  std::uint32_t id[W];  // the caller's id for the constraint in this lane, kPaddingLane if none
   std::int32_t body_a[W];
   std::int32_t body_b[W];
   // Written before prepare each step (core's anchor pass), world frame, at the step start:
