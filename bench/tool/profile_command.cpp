@@ -1,27 +1,33 @@
 #include "tool/profile_command.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "scenes/chain_scene.hpp"
 #include "scenes/grid_scene.hpp"
 #include "tool/progress_bar.hpp"
+#include "tool/report_files.hpp"
 
 namespace softstep::tool {
 
 const char* const kProfileUsage =
     "usage: softstep profile [chain|grid] [scene options] [--hertz F --zeta Z] [--steps S]\n"
     "                        [--substeps N] [--relax N] [--threads T] [--simd scalar|sse|avx2]\n"
-    "                        [--no-warm-start]\n"
+    "                        [--no-warm-start] [--json FILE] [--csv FILE] [--trace FILE]\n"
     "  chain [--links N] [--chains M] [--joint ball|distance]   (default: chain, 10000 links)\n"
     "      N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally, the\n"
     "      first link jointed to the static world; M parallel chains 1 m apart.\n"
     "  grid [--size N]   (default 100)\n"
     "      N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top row\n"
     "      static, ball joints to the right and lower neighbours.\n"
-    "  Stepped S times at 60 Hz (default 300). Rigid joints unless --hertz is given.";
+    "  Stepped S times at 60 Hz (default 300). Rigid joints unless --hertz is given.\n"
+    "  --json FILE   the figures as one JSON object; --csv FILE   one row per step;\n"
+    "  --trace FILE  Chrome / Perfetto trace events: one slice per stage per thread.";
 
 namespace {
 
@@ -47,6 +53,12 @@ struct SceneRun {
   std::string description;
   std::vector<JointId> joints;
   double rows = 0.0;
+  std::function<double()> stretch_ratio;
+};
+
+struct CsvRow {
+  double ms;
+  std::array<double, kStageCount> stages;
 };
 
 }  // namespace
@@ -85,30 +97,72 @@ int profile_command(Arguments& args) {
   settings.threads = static_cast<int>(args.take_int("--threads", 1, 1, 256));
   settings.simd = parse_simd(args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best"));
   settings.warm_start = !args.take_switch("--no-warm-start");
+  const std::string json_path = args.take_string("--json", "");
+  const std::string csv_path = args.take_string("--csv", "");
+  const std::string trace_path = args.take_string("--trace", "");
   args.reject_leftovers();
+  std::vector<CsvRow> csv_rows;
 
   World world(settings);
+  world.set_profiling(true);
   SceneRun run;
   const std::string spring_text =
-      soft ? "spring " + std::to_string(hertz) + " Hz, zeta " + std::to_string(zeta)
+      soft ? "spring " + format_number(hertz) + " Hz, zeta " + format_number(zeta)
            : std::string("rigid");
   if (scene == "chain") {
-    run.joints = scenes::build_chain(world, chain).joints;
+    const scenes::ChainScene built = scenes::build_chain(world, chain);
+    run.joints = built.joints;
     run.rows = static_cast<double>(run.joints.size()) * scenes::rows_per_joint(chain.joint);
     run.description = "chain: " + std::to_string(chain.chains) + " x " +
                       std::to_string(chain.links) + " links, " +
                       (chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance") +
                       " joints, " + spring_text;
+    // Path length through the link centres over the rest length, the worst chain.
+    run.stretch_ratio = [&world, built, spacing = chain.link_spacing] {
+      double worst = 0.0;
+      for (std::size_t c = 0; c < built.links.size(); ++c) {
+        double length = 0.0;
+        Eigen::Vector3d previous = world.body(built.anchors[c]).position;
+        for (BodyId b : built.links[c]) {
+          const Eigen::Vector3d p = world.body(b).position;
+          length += (p - previous).norm();
+          previous = p;
+        }
+        worst = std::max(worst, length / (spacing * static_cast<double>(built.links[c].size())));
+      }
+      return worst;
+    };
   } else {
-    run.joints = scenes::build_grid(world, grid).joints;
+    const scenes::GridScene built = scenes::build_grid(world, grid);
+    run.joints = built.joints;
     run.rows = 3.0 * static_cast<double>(run.joints.size());
     run.description = "grid: " + std::to_string(grid.size) + " x " + std::to_string(grid.size) +
                       " bodies, ball joints, " + spring_text;
+    // Height of the hanging net over its rest height, the worst column.
+    run.stretch_ratio = [&world, built, n = static_cast<std::size_t>(grid.size),
+                         spacing = grid.spacing] {
+      double worst = 0.0;
+      for (std::size_t col = 0; col < n; ++col) {
+        double length = 0.0;
+        for (std::size_t row = 1; row < n; ++row) {
+          length += (world.body(built.bodies[row * n + col]).position -
+                     world.body(built.bodies[(row - 1) * n + col]).position)
+                        .norm();
+        }
+        worst = std::max(worst, length / (spacing * static_cast<double>(n - 1)));
+      }
+      return worst;
+    };
   }
+
   const double dt = 1.0 / 60.0;
   std::vector<double> step_ms;
-  step_ms.reserve(static_cast<std::size_t>(steps));
-  double worst_error = 0.0;
+  std::vector<std::array<double, kStageCount>> stage_ms;
+  std::vector<double> wait_share;
+  Trace trace;
+  double worst_error_run = 0.0;
+  const long error_every = std::max(1L, steps / 100);  // ~100 samples, outside the timed step
+  const auto run_start = std::chrono::steady_clock::now();
   {
     ProgressBar bar("profile", steps);
     for (long i = 0; i < steps; ++i) {
@@ -116,39 +170,109 @@ int profile_command(Arguments& args) {
       world.step(dt);
       const auto t1 = std::chrono::steady_clock::now();
       step_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+      const StepProfile& p = world.last_step_profile();
+      stage_ms.push_back(p.stage_ms);
+      double waited = 0.0;
+      for (double w : p.barrier_wait_ms) waited += w;
+      wait_share.push_back(p.step_ms > 0.0 ? waited / (p.step_ms * p.threads) : 0.0);
+      if (!trace_path.empty()) {
+        trace.add_step(std::chrono::duration<double, std::micro>(t0 - run_start).count(), p);
+      }
+      if (i % error_every == 0 || i + 1 == steps) {
+        worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
+      }
+      if (!csv_path.empty()) csv_rows.push_back({step_ms.back(), p.stage_ms});
       bar.update(i + 1);
     }
   }
   const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
-  worst_error = errors.max;
   const SolverLayout layout = world.solver_layout();
   const double ms = median(step_ms);
-  const double rows = run.rows;
   // Each sub-step solves every row once and relaxes it `relax` times.
-  const double row_solves = rows * settings.substeps * (1 + settings.relax_iterations);
+  const double row_solves = run.rows * settings.substeps * (1 + settings.relax_iterations);
+  std::array<double, kStageCount> stage_median{};
+  for (int k = 0; k < kStageCount; ++k) {
+    std::vector<double> v;
+    for (const auto& s : stage_ms) v.push_back(s[static_cast<std::size_t>(k)]);
+    stage_median[static_cast<std::size_t>(k)] = median(v);
+  }
+  const double stretch = run.stretch_ratio();
 
-  std::printf(
-      "scene            chain: %d x %d links, %s joints, %s\n", chain.chains, chain.links,
-      chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance",
-      soft ? ("spring " + std::to_string(hertz) + " Hz, zeta " + std::to_string(zeta)).c_str()
-           : "rigid");
+  std::printf("scene            %s\n", run.description.c_str());
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
-              world.joint_count(), rows);
+              world.joint_count(), run.rows);
   std::printf(
       "settings         %ld steps of 1/60 s, %d sub-steps, %d relax, %d thread(s), simd %s (%d "
       "lanes)%s\n",
-      steps, settings.substeps, settings.relax_iterations, settings.threads,
+      steps, settings.substeps, settings.relax_iterations, world.last_step_profile().threads,
       simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
   std::string per_color;
   for (std::uint32_t n : layout.joints_per_color)
     per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
   std::printf("colors           %d used (joints per color: %s), overflow %u, lane fill %.3f\n",
               layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
-  std::printf("ms per step      %.3f (median of %ld)\n", ms, steps);
+  std::printf("\n  stage                  ms/step   share\n");
+  for (int k = 0; k < kStageCount; ++k) {
+    const double v = stage_median[static_cast<std::size_t>(k)];
+    std::printf("  %-22s %8.3f  %5.1f %%\n", stage_name(static_cast<Stage>(k)), v,
+                ms > 0 ? 100.0 * v / ms : 0.0);
+  }
+  std::printf("  %-22s %8.3f  (median of %ld steps)\n\n", "step", ms, steps);
   std::printf("row solves / s   %.3g (ns per row solve %.2f)\n", row_solves / (ms * 1e-3),
               ms * 1e6 / row_solves);
-  std::printf("joint error      max %.6g m, rms %.6g m (after the last step)\n", worst_error,
-              errors.rms);
+  std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(wait_share));
+  std::printf(
+      "joint error      max %.6g m, rms %.6g m after the last step; worst over the run %.6g m\n",
+      errors.max, errors.rms, worst_error_run);
+  std::printf(
+      "stretch ratio    %.6g (path length through the bodies / rest length, worst chain or "
+      "column)\n",
+      stretch);
+  std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
+
+  if (!json_path.empty()) {
+    JsonObject j;
+    j.add_string("scene", scene);
+    j.add_string("description", run.description);
+    j.add("bodies", static_cast<double>(world.body_count()));
+    j.add("joints", static_cast<double>(world.joint_count()));
+    j.add("steps", static_cast<double>(steps));
+    j.add("substeps", settings.substeps);
+    j.add("relax_iterations", settings.relax_iterations);
+    j.add("threads", world.last_step_profile().threads);
+    j.add_string("simd", simd_width_name(layout.simd));
+    j.add("ms_per_step", ms);
+    JsonObject stages;
+    for (int k = 0; k < kStageCount; ++k)
+      stages.add(stage_name(static_cast<Stage>(k)), stage_median[static_cast<std::size_t>(k)]);
+    j.add_object("stage_ms", stages);
+    j.add("rows_per_second", row_solves / (ms * 1e-3));
+    j.add("barrier_wait_share", median(wait_share));
+    j.add("colors", layout.colors_used);
+    j.add("overflow_joints", static_cast<double>(layout.overflow_joints));
+    j.add("max_joint_error_m", errors.max);
+    j.add("rms_joint_error_m", errors.rms);
+    j.add("max_joint_error_run_m", worst_error_run);
+    j.add("stretch_ratio", stretch);
+    char hash[32];
+    std::snprintf(hash, sizeof hash, "%016llx",
+                  static_cast<unsigned long long>(world.state_hash()));
+    j.add_string("state_hash", hash);
+    write_file(json_path, j.text() + "\n");
+  }
+  if (!csv_path.empty()) {
+    std::string csv = "step,ms";
+    for (int k = 0; k < kStageCount; ++k)
+      csv += std::string(",") + stage_name(static_cast<Stage>(k)) + "_ms";
+    csv += "\n";
+    for (std::size_t i = 0; i < csv_rows.size(); ++i) {
+      csv += std::to_string(i) + "," + format_number(csv_rows[i].ms);
+      for (double v : csv_rows[i].stages) csv += "," + format_number(v);
+      csv += "\n";
+    }
+    write_file(csv_path, csv);
+  }
+  if (!trace_path.empty()) write_file(trace_path, trace.text());
   return 0;
 }
 

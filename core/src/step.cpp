@@ -5,7 +5,9 @@
 //   store: write the double-precision poses and velocities back
 #include <omp.h>
 
+#include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "solver/team.hpp"
 #include "validation.hpp"
@@ -149,41 +151,113 @@ void World::step(double dt) {
   const bool has_joints = w.joint_count > 0;
 
   // Every thread runs every stage on its share; team_barrier orders the stages.
-  const auto run = [&](const solver::Share& share) {
-    w.prepare_bodies(h, share);
-    solver::team_barrier(share);
-    if (has_joints) {
-      solver.prepare(w.joints, w.bodies, ctx, share);
+  const bool profiling = w.profiling;
+  const auto step_start = std::chrono::steady_clock::now();
+  const auto since_start = [&] {
+    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - step_start)
+        .count();
+  };
+  std::vector<std::vector<StageEvent>> events;
+  std::vector<double> waits;
+  const auto run = [&](solver::Share share) {
+    if (profiling) share.barrier_wait_us = &waits[static_cast<std::size_t>(share.thread)];
+    // Runs one stage, recording its span on this thread when profiling.
+    const auto stage = [&](Stage which, auto&& work) {
+      if (!profiling) {
+        work();
+        return;
+      }
+      const double begin = since_start();
+      work();
+      events[static_cast<std::size_t>(share.thread)].push_back({which, begin, since_start()});
+    };
+    stage(Stage::Prepare, [&] {
+      w.prepare_bodies(h, share);
       solver::team_barrier(share);
-    }
+      if (has_joints) {
+        solver.prepare(w.joints, w.bodies, ctx, share);
+        solver::team_barrier(share);
+      }
+    });
     for (int sub = 0; sub < s.substeps; ++sub) {
-      solver.integrate_velocities(w.solver_bodies, h, share);
-      solver::team_barrier(share);
+      stage(Stage::IntegrateVelocities, [&] {
+        solver.integrate_velocities(w.solver_bodies, h, share);
+        solver::team_barrier(share);
+      });
       if (has_joints) {
-        if (s.warm_start) {
-          solver.warm_start(arrays, share);
-        } else {
-          solver.clear_impulses(share);
-          solver::team_barrier(share);
-        }
-        solver.solve(arrays, ctx, share);
+        stage(Stage::WarmStart, [&] {
+          if (s.warm_start) {
+            solver.warm_start(arrays, share);
+          } else {
+            solver.clear_impulses(share);
+            solver::team_barrier(share);
+          }
+        });
+        stage(Stage::Solve, [&] { solver.solve(arrays, ctx, share); });
       }
-      solver.integrate_positions(w.solver_bodies, h, share);
-      solver::team_barrier(share);
-      if (has_joints) {
-        for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
+      stage(Stage::IntegratePositions, [&] {
+        solver.integrate_positions(w.solver_bodies, h, share);
+        solver::team_barrier(share);
+      });
+      if (has_joints && s.relax_iterations > 0) {
+        stage(Stage::Relax, [&] {
+          for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
+        });
       }
     }
-    w.finalize_bodies(share);
+    stage(Stage::Store, [&] { w.finalize_bodies(share); });
   };
   const int threads = step_threads(w);
+  if (profiling) {
+    events.assign(static_cast<std::size_t>(threads), {});
+    waits.assign(static_cast<std::size_t>(threads), 0.0);
+  }
   if (threads == 1) {
     run(solver::Share{});
   } else {
 #pragma omp parallel num_threads(threads)
-    run(solver::Share{omp_get_thread_num(), omp_get_num_threads()});
+    run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr});
+  }
+  if (profiling) {
+    StepProfile& p = w.profile;
+    p.step_ms = since_start() * 1e-3;
+    p.threads = threads;
+    p.stage_ms.fill(0.0);
+    for (const StageEvent& e : events[0])
+      p.stage_ms[static_cast<std::size_t>(e.stage)] += (e.end_us - e.start_us) * 1e-3;
+    p.thread_events = std::move(events);
+    p.barrier_wait_ms.clear();
+    for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
   w.last_substep = h;
+}
+
+void World::set_profiling(bool on) {
+  impl_->profiling = on;
+}
+
+const StepProfile& World::last_step_profile() const {
+  return impl_->profile;
+}
+
+const char* stage_name(Stage stage) {
+  switch (stage) {
+    case Stage::Prepare:
+      return "prepare";
+    case Stage::IntegrateVelocities:
+      return "integrate_velocities";
+    case Stage::WarmStart:
+      return "warm_start";
+    case Stage::Solve:
+      return "solve";
+    case Stage::IntegratePositions:
+      return "integrate_positions";
+    case Stage::Relax:
+      return "relax";
+    case Stage::Store:
+      return "store";
+  }
+  return "?";
 }
 
 SolverLayout World::solver_layout() const {

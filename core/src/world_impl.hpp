@@ -116,6 +116,8 @@ struct World::Impl {
   SolverBodies solver_bodies;
   std::vector<double> extra_inertia;  // per body slot, scratch for geometric_inertia
   double last_substep = 0.0;          // s, of the last step (for joint forces)
+  bool profiling = false;
+  StepProfile profile;  // of the last step, while profiling
 
   void unpack_joints();  // save impulses to slots and mark for re-pack
   // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment

@@ -5,6 +5,7 @@
 #include "softstep/errors.hpp"
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"
+#include "softstep/profile.hpp"
 #include "softstep/spring.hpp"
 #include "softstep/world.hpp"
 #include "softstep/world_settings.hpp"

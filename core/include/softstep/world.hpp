@@ -11,6 +11,7 @@
 #include "softstep/errors.hpp"
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"
+#include "softstep/profile.hpp"
 #include "softstep/world_settings.hpp"
 
 namespace softstep {
@@ -75,6 +76,10 @@ class World {
   void step(double dt);
 
   SolverLayout solver_layout() const;
+
+  // While on, every step records where its time went (last_step_profile()).
+  void set_profiling(bool on);
+  const StepProfile& last_step_profile() const;
   // Hash of everything the world holds (bodies, joints, their impulses, settings, ids):
   // equal hashes mean equal worlds, bit for bit. For determinism checks and tests. The SIMD
   // width and thread count are left out: they never change a result.

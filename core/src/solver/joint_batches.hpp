@@ -23,6 +23,7 @@ struct ColorBatches {
 struct Share {
   int thread = 0;
   int threads = 1;
+  double* barrier_wait_us = nullptr;  // when profiling: this thread's time waiting at barriers
 };
 
 struct Slice {

@@ -3,14 +3,22 @@
 // parallel region).
 #pragma once
 
+#include <chrono>
+
 #include "solver/joint_batches.hpp"
 
 namespace softstep::solver {
 
 inline void team_barrier(const Share& share) {
-  if (share.threads > 1) {
+  if (share.threads <= 1) return;
+  if (share.barrier_wait_us == nullptr) {
 #pragma omp barrier
+    return;
   }
+  const auto start = std::chrono::steady_clock::now();
+#pragma omp barrier
+  *share.barrier_wait_us +=
+      std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace softstep::solver

@@ -1,0 +1,69 @@
+#include "tool/report_files.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+
+namespace softstep::tool {
+
+std::string format_number(double value) {
+  if (!std::isfinite(value)) return "null";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", value);
+  return b;
+}
+
+namespace {
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+}  // namespace
+
+void JsonObject::add(const std::string& key, double value) {
+  members_.push_back(quoted(key) + ": " + format_number(value));
+}
+
+void JsonObject::add_string(const std::string& key, const std::string& value) {
+  members_.push_back(quoted(key) + ": " + quoted(value));
+}
+
+void JsonObject::add_object(const std::string& key, const JsonObject& value) {
+  members_.push_back(quoted(key) + ": " + value.text());
+}
+
+std::string JsonObject::text() const {
+  std::string out = "{";
+  for (std::size_t i = 0; i < members_.size(); ++i) out += (i ? ", " : "") + members_[i];
+  return out + "}";
+}
+
+void Trace::add_step(double step_start_us, const StepProfile& profile) {
+  for (std::size_t t = 0; t < profile.thread_events.size(); ++t) {
+    for (const StageEvent& e : profile.thread_events[t]) {
+      if (!events_.empty()) events_ += ",\n";
+      events_ += "{\"name\": \"" + std::string(stage_name(e.stage)) +
+                 "\", \"cat\": \"step\", \"ph\": \"X\", \"ts\": " +
+                 format_number(step_start_us + e.start_us) +
+                 ", \"dur\": " + format_number(e.end_us - e.start_us) +
+                 ", \"pid\": 1, \"tid\": " + std::to_string(t) + "}";
+    }
+  }
+}
+
+std::string Trace::text() const {
+  return "{\"traceEvents\": [\n" + events_ + "\n]}\n";
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+}  // namespace softstep::tool

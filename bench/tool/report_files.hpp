@@ -1,0 +1,38 @@
+// Writers for the tool's report files: a small JSON object, Chrome trace events, numbers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "softstep/profile.hpp"
+
+namespace softstep::tool {
+
+// Shortest round-trip form of a number ("%.17g" trimmed), for JSON and CSV.
+std::string format_number(double value);
+
+class JsonObject {
+ public:
+  void add(const std::string& key, double value);
+  void add_string(const std::string& key, const std::string& value);
+  void add_object(const std::string& key, const JsonObject& value);
+  std::string text() const;
+
+ private:
+  std::vector<std::string> members_;
+};
+
+// Chrome / Perfetto trace-event JSON: one complete event ("ph": "X") per stage per thread.
+class Trace {
+ public:
+  void add_step(double step_start_us, const StepProfile& profile);
+  std::string text() const;
+
+ private:
+  std::string events_;
+};
+
+// Throws std::runtime_error naming the path when the file cannot be written.
+void write_file(const std::string& path, const std::string& text);
+
+}  // namespace softstep::tool

@@ -1,0 +1,39 @@
+// Where the time of a step went, per stage and per thread. Recorded only while profiling is
+// on (World::set_profiling); off, a stage costs one branch more.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace softstep {
+
+enum class Stage : std::uint8_t {
+  Prepare,              // body records, anchors, softness (once per step)
+  IntegrateVelocities,  // gravity and damping (per sub-step)
+  WarmStart,            // apply the previous sub-step's impulses (per sub-step)
+  Solve,                // soft, biased pass (per sub-step)
+  IntegratePositions,   // (per sub-step)
+  Relax,                // rigid, unbiased passes (per sub-step)
+  Store,                // poses and velocities back to the world (once per step)
+};
+inline constexpr int kStageCount = 7;
+const char* stage_name(Stage stage);  // "prepare", "integrate_velocities", ...
+
+// One stage run by one thread: [start, end) in microseconds since the step began.
+struct StageEvent {
+  Stage stage;
+  double start_us;
+  double end_us;
+};
+
+struct StepProfile {
+  double step_ms = 0.0;  // wall time of the whole step
+  std::array<double, kStageCount>
+      stage_ms{};  // wall time per stage on thread 0, summed over sub-steps
+  std::vector<std::vector<StageEvent>> thread_events;  // per thread, in order
+  std::vector<double> barrier_wait_ms;                 // per thread: time spent waiting at barriers
+  int threads = 1;
+};
+
+}  // namespace softstep
