@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "scenes/bridge_scene.hpp"
 #include "scenes/chain_scene.hpp"
 #include "scenes/grid_scene.hpp"
 #include "tool/progress_bar.hpp"
@@ -16,7 +17,7 @@
 namespace softstep::tool {
 
 const char* const kProfileUsage =
-    "usage: softstep profile [chain|grid] [scene options] [--hertz F --zeta Z] [--steps S]\n"
+    "usage: softstep profile [chain|grid|bridge] [scene options] [--hertz F --zeta Z] [--steps S]\n"
     "                        [--substeps N] [--relax N] [--threads T] [--simd scalar|sse|avx2]\n"
     "                        [--no-warm-start] [--json FILE] [--csv FILE] [--trace FILE]\n"
     "  chain [--links N] [--chains M] [--joint ball|distance]   (default: chain, 10000 links)\n"
@@ -25,6 +26,8 @@ const char* const kProfileUsage =
     "  grid [--size N]   (default 100)\n"
     "      N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top row\n"
     "      static, ball joints to the right and lower neighbours.\n"
+    "  bridge [--span N] [--loads K] [--load-mass M]   (default 1000 links, 10 loads of 50 kg)\n"
+    "      a chain of N links pinned at both ends, K heavy bodies hanging from it on 0.5 m rods.\n"
     "  Stepped S times at 60 Hz (default 300). Rigid joints unless --hertz is given.\n"
     "  --json FILE   the figures as one JSON object; --csv FILE   one row per step;\n"
     "  --trace FILE  Chrome / Perfetto trace events: one slice per stage per thread.";
@@ -66,8 +69,8 @@ struct CsvRow {
 int profile_command(Arguments& args) {
   const std::vector<std::string> positionals = args.take_positionals();
   const std::string scene = positionals.empty() ? "chain" : positionals.front();
-  if (positionals.size() > 1 || (scene != "chain" && scene != "grid")) {
-    throw UsageError("unknown scene '" + positionals.back() + "' (scenes: chain, grid)");
+  if (positionals.size() > 1 || (scene != "chain" && scene != "grid" && scene != "bridge")) {
+    throw UsageError("unknown scene '" + positionals.back() + "' (scenes: chain, grid, bridge)");
   }
   const auto only_for = [&](const char* flag, const char* owner) {
     if (scene != owner && args.has(flag))
@@ -75,6 +78,7 @@ int profile_command(Arguments& args) {
   };
   for (const char* flag : {"--links", "--chains", "--joint"}) only_for(flag, "chain");
   only_for("--size", "grid");
+  for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
 
   scenes::ChainOptions chain;
   chain.links = static_cast<int>(args.take_int("--links", 10000, 1, 100000000));
@@ -84,12 +88,16 @@ int profile_command(Arguments& args) {
                     : scenes::ChainJoint::Distance;
   scenes::GridOptions grid;
   grid.size = static_cast<int>(args.take_int("--size", 100, 2, 100000));
+  scenes::BridgeOptions bridge;
+  bridge.span = static_cast<int>(args.take_int("--span", 1000, 2, 100000000));
+  bridge.loads = static_cast<int>(args.take_int("--loads", 10, 0, bridge.span));
+  bridge.load_mass = args.take_double("--load-mass", 50.0, 1e-3, 1e9);
   const bool soft = args.has("--hertz");
   const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
   const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
   if (!soft && args.has("--zeta"))
     throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
-  chain.spring = grid.spring = soft ? Spring::soft(hertz, zeta) : Spring::rigid();
+  chain.spring = grid.spring = bridge.spring = soft ? Spring::soft(hertz, zeta) : Spring::rigid();
   const long steps = args.take_int("--steps", 300, 1, 100000000);
   WorldSettings settings;
   settings.substeps = static_cast<int>(args.take_int("--substeps", 4, 1, 1000));
@@ -131,6 +139,22 @@ int profile_command(Arguments& args) {
         worst = std::max(worst, length / (spacing * static_cast<double>(built.links[c].size())));
       }
       return worst;
+    };
+  } else if (scene == "bridge") {
+    const scenes::BridgeScene built = scenes::build_bridge(world, bridge);
+    run.joints = built.joints;
+    run.rows = 3.0 * static_cast<double>(bridge.span + 1) + static_cast<double>(bridge.loads);
+    run.description = "bridge: " + std::to_string(bridge.span) + " links, " +
+                      std::to_string(bridge.loads) + " loads of " +
+                      format_number(bridge.load_mass) + " kg, " + spring_text;
+    // Path length along the deck over its rest length.
+    run.stretch_ratio = [&world, built, span = bridge.span] {
+      double length = 0.0;
+      for (std::size_t i = 1; i < built.links.size(); ++i) {
+        length +=
+            (world.body(built.links[i]).position - world.body(built.links[i - 1]).position).norm();
+      }
+      return length / (0.25 * (span - 1));
     };
   } else {
     const scenes::GridScene built = scenes::build_grid(world, grid);
