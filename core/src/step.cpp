@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "solver/team.hpp"
@@ -30,14 +31,32 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
   return ctx;
 }
 
-// Threads for this step: the setting, or one when the work is too small to share. Below a
-// few thousand bodies and joints a step takes tens of microseconds, and a barrier per colour
-// per stage (0.4-1 us each on an idle machine, 10-170 us when another process holds a core,
-// TOOLCHAIN.md) would cost more than the second core gives.
-int step_threads(const World::Impl& w) {
+// Threads for this step. One when the setting says so, or when the work is too small to
+// share: below a few thousand bodies and joints a step takes tens of microseconds, and a
+// barrier per colour per stage (0.4-1 us each on an idle machine, TOOLCHAIN.md) costs more
+// than the second core gives.
+//
+// Otherwise whichever of one thread or all ran recent steps faster, trying the other every
+// kProbeEvery steps. When another process holds a core, a step shorter than a scheduler
+// time slice waits milliseconds at a barrier whenever one of its threads is descheduled: a
+// 10,000-link step took 5x longer on two threads than on one. Results are bit-identical for
+// any count, so switching never changes the simulation.
+int step_threads(World::Impl& w) {
   constexpr std::size_t kMinWorkToShare = 4096;
+  constexpr long kProbeEvery = 64;
   if (w.settings.threads <= 1 || w.body_count + w.joint_count < kMinWorkToShare) return 1;
-  return w.settings.threads;
+  World::Impl::ThreadPolicy& p = w.thread_policy;
+  ++p.steps;
+  if (p.ms[1] == 0.0) return w.settings.threads;  // measure all threads first
+  if (p.ms[0] == 0.0) return 1;                   // then one
+  const bool all_faster = p.ms[1] < p.ms[0];
+  const bool probe = p.steps % kProbeEvery == 0;
+  return all_faster != probe ? w.settings.threads : 1;
+}
+
+void record_step_time(World::Impl& w, int threads, double ms) {
+  double& recent = w.thread_policy.ms[threads > 1 ? 1 : 0];
+  recent = recent == 0.0 ? ms : 0.5 * (recent + ms);
 }
 
 }  // namespace
@@ -138,6 +157,7 @@ void World::step(double dt) {
     validation::reject("step", "dt", validation::format(dt),
                        "dt / substeps must be a representable sub-step in (0, 1e6] s");
   }
+  if (!w.joints_packed || !w.bodies_listed) w.thread_policy = {};  // new content: measure afresh
   if (!w.joints_packed) {
     w.lane_solver->pack(w.coloring, w.joints, w.bodies);
     w.joints_packed = true;
@@ -215,9 +235,17 @@ void World::step(double dt) {
   if (threads == 1) {
     run(solver::Share{});
   } else {
+    // The team may come out smaller than asked (OMP_THREAD_LIMIT, nested regions): the
+    // barrier is sized by the first thread to know, before anyone uses it.
+    std::optional<solver::StepBarrier> barrier;
 #pragma omp parallel num_threads(threads)
-    run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr});
+    {
+#pragma omp single
+      barrier.emplace(omp_get_num_threads());
+      run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr, &*barrier});
+    }
   }
+  if (threads > 1 || w.settings.threads > 1) record_step_time(w, threads, since_start() * 1e-3);
   if (profiling) {
     StepProfile& p = w.profile;
     p.step_ms = since_start() * 1e-3;

@@ -116,6 +116,12 @@ struct World::Impl {
   SolverBodies solver_bodies;
   std::vector<double> extra_inertia;  // per body slot, scratch for geometric_inertia
   double last_substep = 0.0;          // s, of the last step (for joint forces)
+  // Chooses one thread or all for each step from how fast recent steps ran with each.
+  // Results do not depend on the count, so it may change at any step.
+  struct ThreadPolicy {
+    double ms[2] = {0.0, 0.0};  // recent step time with one thread [0] and with all [1]; 0 unknown
+    long steps = 0;
+  } thread_policy;
   bool profiling = false;
   StepProfile profile;  // of the last step, while profiling
 

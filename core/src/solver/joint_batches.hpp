@@ -20,10 +20,13 @@ struct ColorBatches {
 // [n * thread / threads, n * (thread + 1) / threads) of any n items. A static split: the
 // same thread touches the same groups and bodies in every colour and sub-step (TOOLCHAIN.md:
 // records migrating between cores cost more than the barriers).
+class StepBarrier;
+
 struct Share {
   int thread = 0;
   int threads = 1;
   double* barrier_wait_us = nullptr;  // when profiling: this thread's time waiting at barriers
+  StepBarrier* barrier = nullptr;     // shared by the step's threads when threads > 1
 };
 
 struct Slice {
