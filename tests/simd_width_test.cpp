@@ -94,7 +94,8 @@ TEST(Threads, TwoThreadsAreBitIdenticalToOneAtEveryWidth) {
     o.links = 3000;
     o.spring = Spring::soft(20.0, 0.5);
     scenes::build_chain(world, o);
-    for (int i = 0; i < 100; ++i) world.step(1.0 / 60.0);
+    // 130 steps: past the adaptive thread count's first probe (every 64 steps).
+    for (int i = 0; i < 130; ++i) world.step(1.0 / 60.0);
     return world.state_hash();
   };
   const std::uint64_t reference = run(1, SimdWidth::Scalar);
@@ -102,6 +103,7 @@ TEST(Threads, TwoThreadsAreBitIdenticalToOneAtEveryWidth) {
     try {
       EXPECT_EQ(run(2, w), reference) << simd_width_name(w);
       EXPECT_EQ(run(1, w), reference) << simd_width_name(w);
+      EXPECT_EQ(run(0, w), reference) << simd_width_name(w);  // 0: all of the machine's cores
     } catch (const InvalidArgument&) {
       // width not available on this CPU
     }

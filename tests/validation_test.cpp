@@ -247,7 +247,7 @@ TEST(Validation, StepAndSettingsRejections) {
                   "0");
   expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }),
                   "WorldSettings.relax_iterations", "-1");
-  expect_rejected(settings([](WorldSettings& s) { s.threads = 0; }), "WorldSettings.threads", "0");
+  expect_rejected(settings([](WorldSettings& s) { s.threads = -1; }), "WorldSettings.threads", "-1");
   expect_rejected(settings([](WorldSettings& s) { s.gravity.y() = kNan; }), "WorldSettings.gravity",
                   "nan");
   expect_rejected(settings([](WorldSettings& s) { s.rigid_hertz = 0.0; }),

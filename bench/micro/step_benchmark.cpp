@@ -11,6 +11,7 @@ namespace {
 void step_chain(benchmark::State& state, SimdWidth width, bool soft) {
   WorldSettings s;
   s.simd = width;
+  s.threads = 1;  // these figures are per core; softstep_contention_bench compares thread counts
   World world(s);
   scenes::ChainOptions o;
   o.links = static_cast<int>(state.range(0));

@@ -102,7 +102,7 @@ int profile_command(Arguments& args) {
   WorldSettings settings;
   settings.substeps = static_cast<int>(args.take_int("--substeps", 4, 1, 1000));
   settings.relax_iterations = static_cast<int>(args.take_int("--relax", 1, 0, 1000));
-  settings.threads = static_cast<int>(args.take_int("--threads", 1, 1, 256));
+  settings.threads = static_cast<int>(args.take_int("--threads", 0, 0, 256));  // 0: all cores
   settings.simd = parse_simd(args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best"));
   settings.warm_start = !args.take_switch("--no-warm-start");
   const std::string json_path = args.take_string("--json", "");

@@ -5,6 +5,7 @@
 //   store: write the double-precision poses and velocities back
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -44,14 +45,16 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
 int step_threads(World::Impl& w) {
   constexpr std::size_t kMinWorkToShare = 4096;
   constexpr long kProbeEvery = 64;
-  if (w.settings.threads <= 1 || w.body_count + w.joint_count < kMinWorkToShare) return 1;
+  static const int machine_cores = std::max(1, omp_get_num_procs());
+  const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
+  if (allowed <= 1 || w.body_count + w.joint_count < kMinWorkToShare) return 1;
   World::Impl::ThreadPolicy& p = w.thread_policy;
   ++p.steps;
-  if (p.ms[1] == 0.0) return w.settings.threads;  // measure all threads first
+  if (p.ms[1] == 0.0) return allowed;  // measure all threads first
   if (p.ms[0] == 0.0) return 1;                   // then one
   const bool all_faster = p.ms[1] < p.ms[0];
   const bool probe = p.steps % kProbeEvery == 0;
-  return all_faster != probe ? w.settings.threads : 1;
+  return all_faster != probe ? allowed : 1;
 }
 
 void record_step_time(World::Impl& w, int threads, double ms) {
@@ -245,7 +248,7 @@ void World::step(double dt) {
       run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr, &*barrier});
     }
   }
-  if (threads > 1 || w.settings.threads > 1) record_step_time(w, threads, since_start() * 1e-3);
+  if (threads > 1 || w.settings.threads != 1) record_step_time(w, threads, since_start() * 1e-3);
   if (profiling) {
     StepProfile& p = w.profile;
     p.step_ms = since_start() * 1e-3;

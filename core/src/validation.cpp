@@ -133,8 +133,9 @@ void settings(std::string_view call, const WorldSettings& s) {
     reject(call, "WorldSettings.relax_iterations", std::to_string(s.relax_iterations),
            "must be in [0, 1000]");
   }
-  if (s.threads < 1 || s.threads > 256) {
-    reject(call, "WorldSettings.threads", std::to_string(s.threads), "must be in [1, 256]");
+  if (s.threads < 0 || s.threads > 256) {
+    reject(call, "WorldSettings.threads", std::to_string(s.threads),
+           "must be in [0, 256] (0 = all of the machine's cores)");
   }
   positive(call, "WorldSettings.rigid_hertz", s.rigid_hertz);
   non_negative(call, "WorldSettings.rigid_damping_ratio", s.rigid_damping_ratio);

@@ -19,9 +19,11 @@ struct WorldSettings {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   int substeps = 4;                          // >= 1: sub-steps per step(dt), each a full solve
   int relax_iterations = 1;  // >= 0: rigid, unbiased passes per sub-step after positions move
-  // >= 1. Steps with fewer than 4,096 bodies and joints run on one thread (sharing them would
-  // cost more in barriers than it gains). Results are bit-identical for any count.
-  int threads = 1;
+  // Threads a step may use: 0 = all of the machine's cores (the default), or a count >= 1.
+  // Steps with fewer than 4,096 bodies and joints run on one thread, and larger ones use one
+  // or all, whichever ran recent steps faster (see README). Results are bit-identical for
+  // any count.
+  int threads = 0;
   bool warm_start = true;  // start each sub-step from the previous sub-step's impulses
   // Rigid rows are solved as a stiff spring (and relaxed with none). Its frequency is capped
   // at a quarter of the sub-step rate, so it cannot overshoot: Hz, > 0.
