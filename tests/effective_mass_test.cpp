@@ -54,6 +54,12 @@ Eigen::Matrix3d matrix(const Mat3Sym<float>& m) {
   return r;
 }
 
+// K^-1 as the ball-joint kernel computes it for these bodies, as an Eigen matrix.
+Eigen::Matrix3d kernel_k_inv(const RandomBody& a, const RandomBody& b) {
+  return matrix(inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
+                                       float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r)));
+}
+
 TEST(EffectiveMass, UnitImpulseExperimentMatchesKernels) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -63,10 +69,7 @@ TEST(EffectiveMass, UnitImpulseExperimentMatchesKernels) {
     const double expected = measured_effective_mass(a, b, n);
 
     // Ball joint: the mass seen along n is 1 / (n^T K n).
-    const Mat3Sym<float> k_inv =
-        inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
-                               float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r));
-    const Eigen::Matrix3d k_inv_m = matrix(k_inv);
+    const Eigen::Matrix3d k_inv_m = kernel_k_inv(a, b);
     EXPECT_NEAR(1.0 / n.dot(k_inv_m.inverse() * n), expected, 2e-4 * expected) << "trial " << trial;
 
     // Distance joint along n: its axial mass is the same quantity.
@@ -90,10 +93,7 @@ TEST(EffectiveMass, ExtremeMassesStayAccurate) {
     }
     const Eigen::Vector3d n = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
     const double expected = measured_effective_mass(a, b, n);
-    const Mat3Sym<float> k_inv =
-        inverse_effective_mass(float(a.inv_mass), lanes(a.inv_inertia), lanes(a.r),
-                               float(b.inv_mass), lanes(b.inv_inertia), lanes(b.r));
-    const Eigen::Matrix3d k_inv_m = matrix(k_inv);
+    const Eigen::Matrix3d k_inv_m = kernel_k_inv(a, b);
     ASSERT_TRUE(k_inv_m.allFinite()) << "scale " << scale;
     EXPECT_NEAR(1.0 / n.dot(k_inv_m.inverse() * n), expected, 2e-4 * expected) << "scale " << scale;
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "scenes/chain_scene.hpp"
 #include "scenes/hard_cases.hpp"
 #include "softstep/softstep.hpp"
 
@@ -140,21 +141,9 @@ TEST(Lifetime, DestroyingABodyDestroysItsJoints) {
 TEST(Lifetime, SwitchingWidthMidRunChangesNothing) {
   const auto run = [](bool switch_width) {
     World world;
-    BodyDef ground;
-    ground.type = BodyType::Static;
-    BodyId previous = world.create_body(ground);
-    for (int i = 1; i <= 20; ++i) {
-      BodyDef link;
-      link.position = {0.25 * i, 0.0, 0.0};
-      const BodyId body = world.create_body(link);
-      BallJointDef j;
-      j.body_a = previous;
-      j.body_b = body;
-      j.local_anchor_a = {0.125, 0.0, 0.0};
-      j.local_anchor_b = {-0.125, 0.0, 0.0};
-      world.create_ball_joint(j);
-      previous = body;
-    }
+    scenes::ChainOptions o;
+    o.links = 20;
+    scenes::build_chain(world, o);
     for (int i = 0; i < 100; ++i) {
       if (switch_width && i == 50) {
         WorldSettings s = world.settings();
