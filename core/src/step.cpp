@@ -51,7 +51,7 @@ int step_threads(World::Impl& w) {
   World::Impl::ThreadPolicy& p = w.thread_policy;
   ++p.steps;
   if (p.ms[1] == 0.0) return allowed;  // measure all threads first
-  if (p.ms[0] == 0.0) return 1;                   // then one
+  if (p.ms[0] == 0.0) return 1;        // then one
   const bool all_faster = p.ms[1] < p.ms[0];
   const bool probe = p.steps % kProbeEvery == 0;
   return all_faster != probe ? allowed : 1;
@@ -64,11 +64,15 @@ void record_step_time(World::Impl& w, int threads, double ms) {
 
 }  // namespace
 
-void World::Impl::geometric_inertia(float h, std::vector<double>& extra) const {
-  extra.assign(bodies.size(), 0.0);
-  if (!settings.geometric_stiffness || last_substep <= 0.0 || !joints_packed) return;
+void World::Impl::geometric_inertia(float h) {
+  // Empty means none: a world without joints or with the setting off pays no pass.
+  extra_inertia.clear();
+  if (!settings.geometric_stiffness || last_substep <= 0.0 || !joints_packed || joint_count == 0)
+    return;
+  extra_inertia.assign(bodies.size(), 0.0);
   // |force| = |impulse of the last sub-step| / that sub-step
-  lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / last_substep, extra);
+  lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / last_substep,
+                                            extra_inertia);
 }
 
 void World::Impl::list_bodies() {
@@ -104,7 +108,7 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
     if (b.type == BodyType::Dynamic) {
       const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
       Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
-      if (const double c = extra_inertia[s]; c > 0.0) {
+      if (const double c = extra_inertia.empty() ? 0.0 : extra_inertia[s]; c > 0.0) {
         // inverse(R I R^T + c 1) = R inverse(I + c 1) R^T
         const Eigen::Matrix3d inv_body =
             b.diagonal_inertia
@@ -168,7 +172,7 @@ void World::step(double dt) {
   const simd::SubstepContext ctx = make_context(s, h);
   // Serial: sizing the records, and the geometric inertia (joints add into shared bodies).
   w.list_bodies();
-  w.geometric_inertia(h, w.extra_inertia);
+  w.geometric_inertia(h);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
   const bool has_joints = w.joint_count > 0;

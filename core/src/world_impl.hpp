@@ -114,7 +114,7 @@ struct World::Impl {
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;
-  std::vector<double> extra_inertia;  // per body slot, scratch for geometric_inertia
+  std::vector<double> extra_inertia;  // per body slot (empty: none), from geometric_inertia
   double last_substep = 0.0;          // s, of the last step (for joint forces)
   // Chooses one thread or all for each step from how fast recent steps ran with each.
   // Results do not depend on the count, so it may change at any step.
@@ -128,7 +128,7 @@ struct World::Impl {
   void unpack_joints();  // save impulses to slots and mark for re-pack
   // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment
   // mode resolvable at sub-step h: h^2 sum over its joints of |force| |anchor offset|.
-  void geometric_inertia(float h, std::vector<double>& extra) const;
+  void geometric_inertia(float h);
   void list_bodies();  // (re)sizes the records and the movable list after body changes
   void prepare_bodies(float h, const solver::Share& share);
   void finalize_bodies(const solver::Share& share);

@@ -71,12 +71,6 @@ SOFTSTEP_INLINE float max_lanes(float a, float b) {
 SOFTSTEP_INLINE float sqrt_lanes(float a) {
   return std::sqrt(a);
 }
-SOFTSTEP_INLINE float abs_lanes(float a) {
-  return std::fabs(a);
-}
-SOFTSTEP_INLINE float lane(float v, int) {
-  return v;
-}
 
 // ---- batch lanes -------------------------------------------------------------------------
 
@@ -124,16 +118,6 @@ template <class A>
 SOFTSTEP_INLINE xsimd::batch<float, A> sqrt_lanes(const xsimd::batch<float, A>& a) {
   return xsimd::sqrt(a);
 }
-template <class A>
-SOFTSTEP_INLINE xsimd::batch<float, A> abs_lanes(const xsimd::batch<float, A>& a) {
-  return xsimd::abs(a);
-}
-template <class A>
-SOFTSTEP_INLINE float lane(const xsimd::batch<float, A>& v, int i) {
-  alignas(64) float tmp[xsimd::batch<float, A>::size];
-  v.store_aligned(tmp);
-  return tmp[i];
-}
 
 // Generic load: `load<L>(p)` reads kWidth<L> consecutive, aligned floats.
 template <class L>
@@ -143,11 +127,6 @@ SOFTSTEP_INLINE L load(const float* p) {
   } else {
     return L::load_aligned(p);
   }
-}
-
-template <class L>
-SOFTSTEP_INLINE L fnmadd(const L& a, const L& b, const L& c) {  // c - a*b
-  return fmadd(L(0.0f) - a, b, c);
 }
 
 }  // namespace softstep::simd

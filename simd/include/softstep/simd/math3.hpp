@@ -41,11 +41,6 @@ SOFTSTEP_INLINE Vec3<L> cross(const Vec3<L>& a, const Vec3<L>& b) {
   return {fmadd(a.y, b.z, L(0.0f) - a.z * b.y), fmadd(a.z, b.x, L(0.0f) - a.x * b.z),
           fmadd(a.x, b.y, L(0.0f) - a.y * b.x)};
 }
-template <class L>
-SOFTSTEP_INLINE Vec3<L> broadcast3(float x, float y, float z) {
-  return {L(x), L(y), L(z)};
-}
-
 // Symmetric 3x3 matrix: inverse inertia tensors and the 3x3 effective-mass matrix K of a
 // ball joint are symmetric, so six lanes hold them.
 template <class L>
