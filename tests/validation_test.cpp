@@ -245,6 +245,8 @@ TEST(Validation, StepAndSettingsRejections) {
   };
   expect_rejected(settings([](WorldSettings& s) { s.substeps = 0; }), "WorldSettings.substeps",
                   "0");
+  expect_rejected(settings([](WorldSettings& s) { s.solve_iterations = 0; }),
+                  "WorldSettings.solve_iterations", "0");
   expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }),
                   "WorldSettings.relax_iterations", "-1");
   expect_rejected(settings([](WorldSettings& s) { s.threads = -1; }), "WorldSettings.threads", "-1");

@@ -18,7 +18,7 @@ namespace softstep::tool {
 
 const char* const kProfileUsage =
     "usage: softstep profile [chain|grid|bridge] [scene options] [--hertz F --zeta Z] [--steps S]\n"
-    "                        [--substeps N] [--relax N] [--threads T] [--simd scalar|sse|avx2]\n"
+    "                        [--substeps N] [--iterations N] [--relax N] [--threads T] [--simd scalar|sse|avx2]\n"
     "                        [--no-warm-start] [--json FILE] [--csv FILE] [--trace FILE]\n"
     "  chain [--links N] [--chains M] [--joint ball|distance]   (default: chain, 10000 links)\n"
     "      N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally, the\n"
@@ -101,6 +101,7 @@ int profile_command(Arguments& args) {
   const long steps = args.take_int("--steps", 300, 1, 100000000);
   WorldSettings settings;
   settings.substeps = static_cast<int>(args.take_int("--substeps", 4, 1, 1000));
+  settings.solve_iterations = static_cast<int>(args.take_int("--iterations", 1, 1, 1000));
   settings.relax_iterations = static_cast<int>(args.take_int("--relax", 1, 0, 1000));
   settings.threads = static_cast<int>(args.take_int("--threads", 0, 0, 256));  // 0: all cores
   settings.simd = parse_simd(args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best"));
@@ -212,8 +213,9 @@ int profile_command(Arguments& args) {
   const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
   const SolverLayout layout = world.solver_layout();
   const double ms = median(step_ms);
-  // Each sub-step solves every row once and relaxes it `relax` times.
-  const double row_solves = run.rows * settings.substeps * (1 + settings.relax_iterations);
+  // Each sub-step solves every row `iterations` times and relaxes it `relax` times.
+  const double row_solves =
+      run.rows * settings.substeps * (settings.solve_iterations + settings.relax_iterations);
   std::array<double, kStageCount> stage_median{};
   for (int k = 0; k < kStageCount; ++k) {
     std::vector<double> v;
@@ -226,9 +228,9 @@ int profile_command(Arguments& args) {
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
               world.joint_count(), run.rows);
   std::printf(
-      "settings         %ld steps of 1/60 s, %d sub-steps, %d relax, %d thread(s), simd %s (%d "
-      "lanes)%s\n",
-      steps, settings.substeps, settings.relax_iterations, world.last_step_profile().threads,
+      "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, %d "
+      "thread(s), simd %s (%d lanes)%s\n",
+      steps, settings.substeps, settings.solve_iterations, settings.relax_iterations, world.last_step_profile().threads,
       simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
   std::string per_color;
   for (std::uint32_t n : layout.joints_per_color)
@@ -262,6 +264,7 @@ int profile_command(Arguments& args) {
     j.add("joints", static_cast<double>(world.joint_count()));
     j.add("steps", static_cast<double>(steps));
     j.add("substeps", settings.substeps);
+    j.add("solve_iterations", settings.solve_iterations);
     j.add("relax_iterations", settings.relax_iterations);
     j.add("threads", world.last_step_profile().threads);
     j.add_string("simd", simd_width_name(layout.simd));

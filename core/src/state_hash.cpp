@@ -41,6 +41,7 @@ std::uint64_t World::state_hash() const {
   const WorldSettings& s = w.settings;
   h.matrix(s.gravity);
   h.value(s.substeps);
+  h.value(s.solve_iterations);
   h.value(s.relax_iterations);
   h.value(s.warm_start);
   h.value(s.rigid_hertz);

@@ -220,7 +220,9 @@ void World::step(double dt) {
             solver::team_barrier(share);
           }
         });
-        stage(Stage::Solve, [&] { solver.solve(arrays, ctx, share); });
+        stage(Stage::Solve, [&] {
+          for (int i = 0; i < s.solve_iterations; ++i) solver.solve(arrays, ctx, share);
+        });
       }
       stage(Stage::IntegratePositions, [&] {
         solver.integrate_positions(w.solver_bodies, h, share);

@@ -129,6 +129,10 @@ void settings(std::string_view call, const WorldSettings& s) {
   if (s.substeps < 1 || s.substeps > 1000) {
     reject(call, "WorldSettings.substeps", std::to_string(s.substeps), "must be in [1, 1000]");
   }
+  if (s.solve_iterations < 1 || s.solve_iterations > 1000) {
+    reject(call, "WorldSettings.solve_iterations", std::to_string(s.solve_iterations),
+           "must be in [1, 1000]");
+  }
   if (s.relax_iterations < 0 || s.relax_iterations > 1000) {
     reject(call, "WorldSettings.relax_iterations", std::to_string(s.relax_iterations),
            "must be in [0, 1000]");

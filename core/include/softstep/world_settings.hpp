@@ -18,6 +18,10 @@ const char* simd_width_name(SimdWidth width);
 struct WorldSettings {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   int substeps = 4;                          // >= 1: sub-steps per step(dt), each a full solve
+  // >= 1: biased Gauss-Seidel passes per sub-step. One is the design's choice (sub-steps buy
+  // accuracy more cheaply than iterations, DESIGN.md); more converge each sub-step towards
+  // the exact solution of its soft system, which `softstep sweep` measures.
+  int solve_iterations = 1;
   int relax_iterations = 1;  // >= 0: rigid, unbiased passes per sub-step after positions move
   // Threads a step may use: 0 = all of the machine's cores (the default), or a count >= 1.
   // Steps with fewer than 4,096 bodies and joints run on one thread, and larger ones use one
