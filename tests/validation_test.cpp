@@ -249,14 +249,76 @@ TEST(Validation, StepAndSettingsRejections) {
                   "WorldSettings.solve_iterations", "0");
   expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }),
                   "WorldSettings.relax_iterations", "-1");
-  expect_rejected(settings([](WorldSettings& s) { s.threads = -1; }), "WorldSettings.threads", "-1");
+  expect_rejected(settings([](WorldSettings& s) { s.threads = -1; }), "WorldSettings.threads",
+                  "-1");
   expect_rejected(settings([](WorldSettings& s) { s.gravity.y() = kNan; }), "WorldSettings.gravity",
                   "nan");
   expect_rejected(settings([](WorldSettings& s) { s.rigid_hertz = 0.0; }),
                   "WorldSettings.rigid_hertz", "0");
   expect_rejected(settings([](WorldSettings& s) { s.max_correction_speed = -1.0; }),
                   "WorldSettings.max_correction_speed", "-1");
+  expect_rejected(settings([](WorldSettings& s) { s.max_linear_speed = 0.0; }),
+                  "WorldSettings.max_linear_speed", "0");
+  expect_rejected(settings([](WorldSettings& s) { s.max_linear_speed = 2e6; }),
+                  "WorldSettings.max_linear_speed", "2000000");
   EXPECT_THROW(World(WorldSettings{.substeps = 0}), InvalidArgument);
+}
+
+// The float envelope (validation.cpp): values each finite but whose products would leave
+// float in the solver are refused, naming the field and the value.
+TEST(Validation, FloatEnvelopeRejections) {
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_linear_velocity(f.a, {2e4, 0.0, 0.0});
+      },
+      "velocity", "20000");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_position(f.a, {0.0, 2e9, 0.0});
+      },
+      "position", "2e+09");
+  expect_rejected(
+      [](Fixture& f) { f.world.set_mass_properties(f.a, 1e16, Eigen::Matrix3d::Identity()); },
+      "mass", "1e+16");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.set_mass_properties(f.a, 1.0, Eigen::Matrix3d::Identity() * 1e-16);
+      },
+      "inertia", "1e-16");
+  expect_rejected([](Fixture& f) { f.world.step(1e-10); }, "dt", "1e-10");
+  expect_rejected([](Fixture& f) { f.world.step(5e3); }, "dt", "5000");
+  expect_rejected(
+      [](Fixture& f) {
+        BodyDef d;
+        d.type = BodyType::Kinematic;
+        d.linear_velocity = {0.0, 0.0, -1.5e4};
+        f.world.create_body(d);
+      },
+      "BodyDef.linear_velocity", "-15000");
+}
+
+// A lower speed limit cannot be applied to a kinematic body that already moves faster: it
+// keeps the velocity it was given, so the limit could not hold.
+TEST(Validation, SpeedLimitBelowAKinematicBodyIsRejected) {
+  World world(WorldSettings{.max_linear_speed = 1e6});
+  BodyDef d;
+  d.type = BodyType::Kinematic;
+  d.linear_velocity = {5e5, 0.0, 0.0};
+  world.create_body(d);
+  world.step(1.0 / 60.0);
+  const std::uint64_t before = world.state_hash();
+  WorldSettings s = world.settings();
+  s.max_linear_speed = 100.0;
+  try {
+    world.set_settings(s);
+    ADD_FAILURE() << "accepted";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.field(), "WorldSettings.max_linear_speed");
+    EXPECT_NE(std::string(e.what()).find("500000"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(world.state_hash(), before);
+  s.max_linear_speed = 5e5;
+  EXPECT_NO_THROW(world.set_settings(s));
 }
 
 // The hash really covers what the rejections could have touched: any accepted change moves it.

@@ -42,6 +42,7 @@ std::uint64_t World::state_hash() const {
   h.matrix(s.gravity);
   h.value(s.substeps);
   h.value(s.solve_iterations);
+  h.value(s.max_linear_speed);
   h.value(s.relax_iterations);
   h.value(s.warm_start);
   h.value(s.rigid_hertz);

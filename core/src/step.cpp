@@ -29,6 +29,7 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
   ctx.rigid =
       simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
   ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
+  ctx.max_linear_speed = static_cast<float>(s.max_linear_speed);
   return ctx;
 }
 
@@ -159,11 +160,14 @@ void World::step(double dt) {
     validation::reject("step", "dt", validation::format(dt), "must be finite and > 0 s");
   }
   const WorldSettings& s = w.settings;
-  const float h = static_cast<float>(dt / s.substeps);
-  if (!(h > 0.0f && h <= 1e6f)) {
+  const double substep = dt / s.substeps;
+  if (!(substep >= validation::kMinSubstep && substep <= validation::kMaxSubstep)) {
     validation::reject("step", "dt", validation::format(dt),
-                       "dt / substeps must be a representable sub-step in (0, 1e6] s");
+                       "dt / substeps must be a sub-step in [" +
+                           validation::format(validation::kMinSubstep) + ", " +
+                           validation::format(validation::kMaxSubstep) + "] s");
   }
+  const float h = static_cast<float>(substep);
   if (!w.joints_packed || !w.bodies_listed) w.thread_policy = {};  // new content: measure afresh
   if (!w.joints_packed) {
     w.lane_solver->pack(w.coloring, w.joints, w.bodies);
@@ -208,7 +212,7 @@ void World::step(double dt) {
     });
     for (int sub = 0; sub < s.substeps; ++sub) {
       stage(Stage::IntegrateVelocities, [&] {
-        solver.integrate_velocities(w.solver_bodies, h, share);
+        solver.integrate_velocities(w.solver_bodies, ctx, share);
         solver::team_barrier(share);
       });
       if (has_joints) {

@@ -6,12 +6,17 @@
 
 namespace softstep::validation {
 
-// Masses outside this range have an inverse that float cannot hold (or that is denormal).
-constexpr double kMinMass = 1e-30;
-constexpr double kMaxMass = 1e30;
-// The solver works in float (max 3.4e38) on products of these values; anything larger than
-// this is rejected as out of range rather than left to turn into inf in a kernel.
-constexpr double kMaxMagnitude = 1e18;
+// The float envelope. The solver works in float (max 3.4e38) on products of these values:
+// an effective mass times a speed (1e15 kg x 1e6 m/s), an anchor offset squared over an
+// inertia (1e9 m squared / 1e-15 kg m^2), a position error over a sub-step (2e9 m / 1e-9 s)
+// times a mass. Each bound keeps every such product below ~1e34, with room for the sums a
+// Gauss-Seidel pass adds; a value beyond them is rejected here rather than left to become inf
+// in a kernel. (The fuzzer found a world of 1e18 kg, 1e18 m/s and dt 68 s, each accepted
+// under the earlier +-1e18 bound, whose products turned a body NaN.)
+constexpr double kMinMass = 1e-9;  // kg
+constexpr double kMaxMass = 1e15;
+constexpr double kMinInertia = 1e-15;  // kg m^2
+constexpr double kMaxInertia = 1e24;
 
 std::string format(double value) {
   char buffer[40];
@@ -33,25 +38,26 @@ void reject(std::string_view call, std::string_view field, const std::string& va
 
 void finite(std::string_view call, std::string_view field, double value) {
   if (!std::isfinite(value)) reject(call, field, format(value), "must be finite");
-  if (std::abs(value) > kMaxMagnitude) reject(call, field, format(value), "must be within +-1e18");
+  if (std::abs(value) > kMaxMagnitude)
+    reject(call, field, format(value), "must be within +-" + format(kMaxMagnitude));
 }
 
 void finite(std::string_view call, std::string_view field, const Eigen::Vector3d& value) {
   if (!value.allFinite()) reject(call, field, format(value), "every component must be finite");
   if (value.cwiseAbs().maxCoeff() > kMaxMagnitude) {
-    reject(call, field, format(value), "every component must be within +-1e18");
+    reject(call, field, format(value), "every component must be within +-" + format(kMaxMagnitude));
   }
 }
 
 void non_negative(std::string_view call, std::string_view field, double value) {
   if (!(std::isfinite(value) && value >= 0.0 && value <= kMaxMagnitude)) {
-    reject(call, field, format(value), "must be finite, >= 0 and <= 1e18");
+    reject(call, field, format(value), "must be finite, >= 0 and <= " + format(kMaxMagnitude));
   }
 }
 
 void positive(std::string_view call, std::string_view field, double value) {
   if (!(std::isfinite(value) && value > 0.0 && value <= kMaxMagnitude)) {
-    reject(call, field, format(value), "must be finite, > 0 and <= 1e18");
+    reject(call, field, format(value), "must be finite, > 0 and <= " + format(kMaxMagnitude));
   }
 }
 
@@ -68,7 +74,9 @@ Quaternion unit_quaternion(std::string_view call, std::string_view field, const 
 
 void dynamic_mass(std::string_view call, std::string_view field, double mass) {
   if (!(std::isfinite(mass) && mass >= kMinMass && mass <= kMaxMass)) {
-    reject(call, field, format(mass), "a dynamic body needs a finite mass in [1e-30, 1e30] kg");
+    reject(call, field, format(mass),
+           "a dynamic body needs a finite mass in [" + format(kMinMass) + ", " + format(kMaxMass) +
+               "] kg");
   }
 }
 
@@ -82,11 +90,11 @@ void inertia_tensor(std::string_view call, std::string_view field, const Eigen::
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(inertia, Eigen::EigenvaluesOnly);
   const double smallest = eigen.eigenvalues().minCoeff();
-  if (!(smallest > 0.0) || smallest < kMinMass * 1e-6 ||
-      eigen.eigenvalues().maxCoeff() > kMaxMass) {
+  if (!(smallest > 0.0) || smallest < kMinInertia || eigen.eigenvalues().maxCoeff() > kMaxInertia) {
     reject(call, field, value,
-           "must be positive definite with eigenvalues in [1e-36, 1e30] kg m^2 (smallest " +
-               format(smallest) + ")");
+           "must be positive definite with eigenvalues in [" + format(kMinInertia) + ", " +
+               format(kMaxInertia) + "] kg m^2 (smallest " + format(smallest) + ", largest " +
+               format(eigen.eigenvalues().maxCoeff()) + ")");
   }
 }
 
@@ -95,12 +103,21 @@ void spring(std::string_view call, std::string_view field, const Spring& s) {
   const std::string zeta_field = std::string(field) + ".damping_ratio";
   if (std::isnan(s.hertz) || s.hertz < 0.0 || (s.hertz > kMaxMagnitude && !s.is_rigid())) {
     reject(call, hertz_field, format(s.hertz),
-           "must be in [0, 1e18] (0 = free) or +infinity (rigid)");
+           "must be in [0, " + format(kMaxMagnitude) + "] (0 = free) or +infinity (rigid)");
   }
   non_negative(call, zeta_field, s.damping_ratio);
 }
 
-void body_def(std::string_view call, const BodyDef& def) {
+void linear_speed(std::string_view call, std::string_view field, const Eigen::Vector3d& velocity,
+                  double max_speed) {
+  if (velocity.norm() > max_speed) {
+    reject(call, field, format(velocity),
+           "its magnitude " + format(velocity.norm()) +
+               " m/s exceeds WorldSettings.max_linear_speed (" + format(max_speed) + " m/s)");
+  }
+}
+
+void body_def(std::string_view call, const BodyDef& def, double max_linear_speed) {
   if (def.type != BodyType::Static && def.type != BodyType::Kinematic &&
       def.type != BodyType::Dynamic) {
     reject(call, "BodyDef.type", format(static_cast<double>(def.type)), "unknown body type");
@@ -108,6 +125,7 @@ void body_def(std::string_view call, const BodyDef& def) {
   finite(call, "BodyDef.position", def.position);
   unit_quaternion(call, "BodyDef.orientation", def.orientation);
   finite(call, "BodyDef.linear_velocity", def.linear_velocity);
+  linear_speed(call, "BodyDef.linear_velocity", def.linear_velocity, max_linear_speed);
   finite(call, "BodyDef.angular_velocity", def.angular_velocity);
   if (def.type == BodyType::Static &&
       (!def.linear_velocity.isZero(0.0) || !def.angular_velocity.isZero(0.0))) {
@@ -142,6 +160,10 @@ void settings(std::string_view call, const WorldSettings& s) {
            "must be in [0, 256] (0 = all of the machine's cores)");
   }
   positive(call, "WorldSettings.rigid_hertz", s.rigid_hertz);
+  if (!(s.max_linear_speed > 0.0 && s.max_linear_speed <= kMaxSpeedLimit)) {
+    reject(call, "WorldSettings.max_linear_speed", format(s.max_linear_speed),
+           "must be in (0, " + format(kMaxSpeedLimit) + "] m/s");
+  }
   non_negative(call, "WorldSettings.rigid_damping_ratio", s.rigid_damping_ratio);
   positive(call, "WorldSettings.max_correction_speed", s.max_correction_speed);
 }

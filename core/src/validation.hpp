@@ -12,6 +12,13 @@
 
 namespace softstep::validation {
 
+// Bounds of the float envelope (validation.cpp explains them): every position, length,
+// anchor, gravity, frequency and other plain magnitude lies within +-kMaxMagnitude.
+inline constexpr double kMaxMagnitude = 1e9;
+inline constexpr double kMaxSpeedLimit = 1e6;  // m/s, the largest max_linear_speed
+inline constexpr double kMinSubstep = 1e-9;    // s
+inline constexpr double kMaxSubstep = 1e3;     // s
+
 std::string format(double value);
 std::string format(const Eigen::Vector3d& value);
 
@@ -27,7 +34,10 @@ Quaternion unit_quaternion(std::string_view call, std::string_view field, const 
 void dynamic_mass(std::string_view call, std::string_view field, double mass);
 void inertia_tensor(std::string_view call, std::string_view field, const Eigen::Matrix3d& inertia);
 void spring(std::string_view call, std::string_view field, const Spring& spring);
-void body_def(std::string_view call, const BodyDef& def);
+// |velocity| <= max_speed (WorldSettings.max_linear_speed), after finite().
+void linear_speed(std::string_view call, std::string_view field, const Eigen::Vector3d& velocity,
+                  double max_speed);
+void body_def(std::string_view call, const BodyDef& def, double max_linear_speed);
 void settings(std::string_view call, const WorldSettings& settings);
 
 }  // namespace softstep::validation

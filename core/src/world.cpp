@@ -94,6 +94,16 @@ void World::set_settings(const WorldSettings& settings) {
   validation::settings("set_settings", settings);
   const SimdWidth width = resolve_width("set_settings", settings.simd);
   Impl& w = *impl_;
+  // A kinematic body keeps the velocity it was given, so a lower limit cannot clamp it.
+  for (const BodySlot& b : w.bodies) {
+    if (b.alive && b.type == BodyType::Kinematic &&
+        b.linear_velocity.norm() > settings.max_linear_speed) {
+      validation::reject("set_settings", "WorldSettings.max_linear_speed",
+                         validation::format(settings.max_linear_speed),
+                         "a kinematic body moves at " +
+                             validation::format(b.linear_velocity.norm()) + " m/s; slow it first");
+    }
+  }
   if (width != w.width) {
     w.unpack_joints();
     w.lane_solver = make_lane_solver(width);
@@ -105,7 +115,7 @@ void World::set_settings(const WorldSettings& settings) {
 // ---- bodies -------------------------------------------------------------------------------
 
 BodyId World::create_body(const BodyDef& def) {
-  validation::body_def("create_body", def);
+  validation::body_def("create_body", def, impl_->settings.max_linear_speed);
   Impl& w = *impl_;
   const std::uint32_t slot = take_slot(w.bodies, w.free_bodies);
   BodySlot& b = w.bodies[slot];
@@ -172,6 +182,9 @@ void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen:
                   Eigen::Vector3d BodySlot::*member) {
   const std::uint32_t slot = body_slot(w, call, "body", id);
   validation::finite(call, "velocity", velocity);
+  if (member == &BodySlot::linear_velocity) {
+    validation::linear_speed(call, "velocity", velocity, w.settings.max_linear_speed);
+  }
   if (w.bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
     validation::reject(call, "velocity", validation::format(velocity),
                        "a static body cannot move (use a kinematic body)");
@@ -281,10 +294,12 @@ JointId World::create_distance_joint(const DistanceJointDef& def) {
   validation::non_negative(call, "DistanceJointDef.rest_length", def.rest_length);
   validation::non_negative(call, "DistanceJointDef.min_length", def.min_length);
   if (std::isnan(def.max_length) || def.max_length < def.min_length ||
-      (def.max_length > 1e18 && def.max_length != std::numeric_limits<double>::infinity())) {
+      (def.max_length > validation::kMaxMagnitude &&
+       def.max_length != std::numeric_limits<double>::infinity())) {
     validation::reject(call, "DistanceJointDef.max_length", validation::format(def.max_length),
                        "must be >= min_length (" + validation::format(def.min_length) +
-                           ") and <= 1e18; +infinity for no upper limit");
+                           ") and <= " + validation::format(validation::kMaxMagnitude) +
+                           "; +infinity for no upper limit");
   }
   JointSlot j;
   j.type = JointType::Distance;

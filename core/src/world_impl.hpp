@@ -91,7 +91,8 @@ class LaneSolver {
                      const solver::Share& share) = 0;
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
-  virtual void integrate_velocities(SolverBodies& bodies, float h, const solver::Share& share) = 0;
+  virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
+                                    const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
 

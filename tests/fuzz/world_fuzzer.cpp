@@ -178,6 +178,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           s.gravity = vec(in);
           s.substeps = in.ConsumeIntegralInRange<int>(-1, 6);
           s.relax_iterations = in.ConsumeIntegralInRange<int>(-1, 3);
+          s.solve_iterations = in.ConsumeIntegralInRange<int>(0, 3);
+          s.max_linear_speed = value(in);
           s.warm_start = in.ConsumeBool();
           s.rigid_hertz = value(in);
           s.simd = static_cast<softstep::SimdWidth>(in.ConsumeIntegralInRange<int>(0, 3));

@@ -44,6 +44,10 @@ struct WorldSettings {
   // Andrews, Teichmann and Kry 2017), which keeps that mode below 1/h and changes nothing
   // where it was resolved. Joint forces are the previous step's.
   bool geometric_stiffness = true;
+  // Bodies move no faster than this, m/s, in (0, 1e6]: the solver clamps dynamic bodies' speed
+  // each sub-step, and rejects a velocity above it. It keeps the float solver's products in
+  // range (README, "Input ranges"); 10 km/s is above anything a game throws.
+  double max_linear_speed = 1e4;
   SimdWidth simd = SimdWidth::Best;
 };
 

@@ -52,7 +52,7 @@ struct KernelTable {
                 const Share&);
   // This thread's share of the bodies [0, count), in blocks of W (count is a multiple of W).
   void (*integrate_velocities)(simd::VelocityRecord*, const simd::ForceRecord*, std::int32_t count,
-                               float h, const Share&);
+                               const simd::SubstepContext&, const Share&);
   void (*integrate_positions)(simd::DeltaRecord*, const simd::VelocityRecord*, std::int32_t count,
                               float h, const Share&);
 };

@@ -45,10 +45,11 @@ KernelTable<simd::kWidth<L>> make_kernel_table() {
         [&](Distance& g) { simd::solve_distance_joints<L, false>(g, b, ctx); });
   };
   t.integrate_velocities = [](simd::VelocityRecord* v, const simd::ForceRecord* f,
-                              std::int32_t count, float h, const Share& s) {
+                              std::int32_t count, const simd::SubstepContext& ctx,
+                              const Share& s) {
     const Slice blocks = slice_of(static_cast<std::size_t>(count / W), s);
     for (std::size_t i = blocks.begin; i < blocks.end; ++i) {
-      simd::integrate_velocities<L>(v, f, static_cast<std::int32_t>(i) * W, h);
+      simd::integrate_velocities<L>(v, f, static_cast<std::int32_t>(i) * W, ctx);
     }
   };
   t.integrate_positions = [](simd::DeltaRecord* d, const simd::VelocityRecord* v,

@@ -187,8 +187,9 @@ class LaneSolverImpl final : public LaneSolver {
         [&] { scalar_.relax(overflow_, arrays, ctx, solver::Share{}); });
   }
 
-  void integrate_velocities(SolverBodies& b, float h, const solver::Share& share) override {
-    kernels_.integrate_velocities(b.velocity.data(), b.force.data(), b.padded_count(), h, share);
+  void integrate_velocities(SolverBodies& b, const simd::SubstepContext& ctx,
+                            const solver::Share& share) override {
+    kernels_.integrate_velocities(b.velocity.data(), b.force.data(), b.padded_count(), ctx, share);
   }
 
   void integrate_positions(SolverBodies& b, float h, const solver::Share& share) override {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "softstep/simd/body_records.hpp"
+#include "softstep/simd/step_context.hpp"
 
 namespace softstep::simd {
 
@@ -18,12 +19,25 @@ struct alignas(32) ForceRecord {
 
 inline constexpr float kMaxRotationPerSubstep = 0.25f * 3.14159265f;  // rad
 
+// Scales (x, y, z) down to length `limit` where it is longer; lanes within it are untouched,
+// bit for bit.
+template <class L>
+SOFTSTEP_INLINE void clamp_norm(L& x, L& y, L& z, L limit) {
+  const L n2 = fmadd(x, x, fmadd(y, y, z * z));
+  const auto over = n2 > limit * limit;
+  const L scale = select(over, limit / sqrt_lanes(select(over, n2, L(1.0f))), L(1.0f));
+  x = x * scale;
+  y = y * scale;
+  z = z * scale;
+}
+
 // Bodies [first, first + W) at once: records are contiguous, so the "gather" is W aligned
 // loads and a transpose. Callers pass whole blocks; slots of static bodies and free slots hold
 // zero velocity and an identity rotation, which integrate to themselves exactly.
 template <class L>
 SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceRecord* force,
-                                          std::int32_t first, float h) {
+                                          std::int32_t first, const SubstepContext& ctx) {
+  const float h = ctx.h;
   std::int32_t index[kWidth<L>];
   for (int i = 0; i < kWidth<L>; ++i) index[i] = first + i;
   Rows8<L> v = gather_rows<L>(velocity, index);
@@ -35,11 +49,9 @@ SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceR
   // A body may turn at most a quarter turn per sub-step. Beyond it the first-order rotation
   // update is meaningless and a joint anchored off the centre swings its anchor anywhere: links
   // with tiny inertia and chains at 1/15 s steps exploded (energy x 1e7) before this bound.
-  const L w2 = fmadd(v.r[3], v.r[3], fmadd(v.r[4], v.r[4], v.r[5] * v.r[5]));
-  const L limit = L(kMaxRotationPerSubstep / h);
-  const auto fast = w2 > limit * limit;
-  const L scale = select(fast, limit / sqrt_lanes(select(fast, w2, L(1.0f))), L(1.0f));
-  for (int k = 3; k < 6; ++k) v.r[k] = v.r[k] * scale;
+  clamp_norm(v.r[3], v.r[4], v.r[5], L(kMaxRotationPerSubstep / h));
+  // The speed bound keeps the kernels' float products in range (validation.cpp).
+  clamp_norm(v.r[0], v.r[1], v.r[2], L(ctx.max_linear_speed));
   scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));
 }
 

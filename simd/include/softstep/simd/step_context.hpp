@@ -23,6 +23,9 @@ struct SubstepContext {
   // Bound on the speed at which a rigid row corrects position error, m/s: a joint created far
   // apart is pulled together at this speed instead of launching its bodies.
   float max_correction_speed;
+  // Bodies' speed bound, m/s (WorldSettings.max_linear_speed), applied as velocities are
+  // integrated.
+  float max_linear_speed;
 };
 
 // Spring frequency that marks a rigid row in kernel lanes (API: Spring::rigid()).
