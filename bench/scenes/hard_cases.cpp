@@ -460,8 +460,9 @@ std::vector<HardCase> hard_cases() {
   // / I) = 16 at its top) and 1/15 s steps (5.2), which blew up without it. Still failing:
   const std::string alignment_mode =
       "tension-induced alignment mode, h * sqrt(T r / I) >> 2: the geometric-stiffness inertia "
-      "uses the previous step's joint forces and lags while the tension builds (tiny inertia), "
-      "and a 30 Hz soft chain of 10,000 links still gains a few % of energy";
+      "comes from forces a sub-step or a step old and lags while the tension builds (tiny "
+      "inertia: 0.15 m in the first step and ~0.05 m for a second after), and a 30 Hz soft "
+      "chain of 10,000 links still gains a few % of energy";
   const auto long_chain = [](const Spring& spring) {
     // Laid out at its equilibrium stretch (a chain that starts unstretched drops like a
     // bungee through N^2 g / omega^2, kilometres for 10,000 links), tilted 10 degrees, 20 s.

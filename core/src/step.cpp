@@ -65,14 +65,15 @@ void record_step_time(World::Impl& w, int threads, double ms) {
 
 }  // namespace
 
-void World::Impl::geometric_inertia(float h) {
+void World::Impl::geometric_inertia(float h, double impulse_substep) {
   // Empty means none: a world without joints or with the setting off pays no pass.
   extra_inertia.clear();
-  if (!settings.geometric_stiffness || last_substep <= 0.0 || !joints_packed || joint_count == 0)
+  if (!settings.geometric_stiffness || impulse_substep <= 0.0 || !joints_packed ||
+      joint_count == 0)
     return;
   extra_inertia.assign(bodies.size(), 0.0);
-  // |force| = |impulse of the last sub-step| / that sub-step
-  lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / last_substep,
+  // |force| = |impulse of a sub-step| / that sub-step
+  lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / impulse_substep,
                                             extra_inertia);
 }
 
@@ -91,6 +92,41 @@ void World::Impl::list_bodies() {
   bodies_listed = true;
 }
 
+namespace {
+
+// The solver's mass record of a dynamic body whose inertia is raised by `extra` (kg m^2) on the
+// diagonal, in world axes.
+simd::MassRecord mass_record(const BodySlot& b, double extra) {
+  const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
+  Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
+  if (extra > 0.0) {
+    // inverse(R I R^T + c 1) = R inverse(I + c 1) R^T
+    const Eigen::Matrix3d inv_body =
+        b.diagonal_inertia
+            ? Eigen::Matrix3d(
+                  (b.inertia.diagonal().array() + extra).inverse().matrix().asDiagonal())
+            : Eigen::Matrix3d((b.inertia + extra * Eigen::Matrix3d::Identity()).inverse());
+    inv_i = r * inv_body * r.transpose();
+  }
+  return {static_cast<float>(1.0 / b.mass),
+          {static_cast<float>(inv_i(0, 0)), static_cast<float>(inv_i(1, 1)),
+           static_cast<float>(inv_i(2, 2)), static_cast<float>(inv_i(0, 1)),
+           static_cast<float>(inv_i(0, 2)), static_cast<float>(inv_i(1, 2))},
+          0.0f};
+}
+
+}  // namespace
+
+void World::Impl::refresh_inertia(const solver::Share& share) {
+  SolverBodies& sb = solver_bodies;
+  const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
+  for (std::size_t index = mine.begin; index < mine.end; ++index) {
+    const std::uint32_t s = sb.movable[index];
+    if (bodies[s].type != BodyType::Dynamic) continue;
+    sb.mass[s + 1] = mass_record(bodies[s], extra_inertia.empty() ? 0.0 : extra_inertia[s]);
+  }
+}
+
 void World::Impl::prepare_bodies(float h, const solver::Share& share) {
   SolverBodies& sb = solver_bodies;
   const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
@@ -107,22 +143,7 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
     simd::MassRecord& m = sb.mass[i];
     simd::ForceRecord& f = sb.force[i];
     if (b.type == BodyType::Dynamic) {
-      const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
-      Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
-      if (const double c = extra_inertia.empty() ? 0.0 : extra_inertia[s]; c > 0.0) {
-        // inverse(R I R^T + c 1) = R inverse(I + c 1) R^T
-        const Eigen::Matrix3d inv_body =
-            b.diagonal_inertia
-                ? Eigen::Matrix3d(
-                      (b.inertia.diagonal().array() + c).inverse().matrix().asDiagonal())
-                : Eigen::Matrix3d((b.inertia + c * Eigen::Matrix3d::Identity()).inverse());
-        inv_i = r * inv_body * r.transpose();
-      }
-      m = {static_cast<float>(1.0 / b.mass),
-           {static_cast<float>(inv_i(0, 0)), static_cast<float>(inv_i(1, 1)),
-            static_cast<float>(inv_i(2, 2)), static_cast<float>(inv_i(0, 1)),
-            static_cast<float>(inv_i(0, 2)), static_cast<float>(inv_i(1, 2))},
-           0.0f};
+      m = mass_record(b, extra_inertia.empty() ? 0.0 : extra_inertia[s]);
       const Eigen::Vector3d g = settings.gravity * b.gravity_scale;
       f = {{static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())},
            static_cast<float>(1.0 / (1.0 + h * b.linear_damping)),
@@ -176,7 +197,14 @@ void World::step(double dt) {
   const simd::SubstepContext ctx = make_context(s, h);
   // Serial: sizing the records, and the geometric inertia (joints add into shared bodies).
   w.list_bodies();
-  w.geometric_inertia(h);
+  w.geometric_inertia(h, w.last_substep);
+  // New joints have no force yet, so their bodies got no geometric inertia from them: a link of
+  // tiny inertia then spins through the whole first step (0.5 m joint error in the "tiny
+  // inertia" hard case). The first sub-step's impulses are a force; the inertia is recomputed
+  // from them before the second sub-step (0.15 m). Probing the first sub-step and restarting
+  // it with that inertia was tried, and did worse (0.35 m).
+  const bool refresh_inertia =
+      w.joints_without_history && s.geometric_stiffness && s.substeps > 1 && w.joint_count > 0;
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
   const bool has_joints = w.joint_count > 0;
@@ -212,6 +240,11 @@ void World::step(double dt) {
     });
     for (int sub = 0; sub < s.substeps; ++sub) {
       stage(Stage::IntegrateVelocities, [&] {
+        if (sub == 1 && refresh_inertia) {
+          if (share.thread == 0) w.geometric_inertia(h, h);
+          solver::team_barrier(share);
+          w.refresh_inertia(share);  // integrate_velocities reads no mass record
+        }
         solver.integrate_velocities(w.solver_bodies, ctx, share);
         solver::team_barrier(share);
       });
@@ -271,6 +304,7 @@ void World::step(double dt) {
     for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
   w.last_substep = h;
+  w.joints_without_history = false;
 }
 
 void World::set_profiling(bool on) {

@@ -259,6 +259,7 @@ static JointId add_joint(World::Impl& w, JointSlot&& joint) {
   joint.alive = true;
   joint.impulse.setZero();
   w.joints[slot] = std::move(joint);
+  w.joints_without_history = true;
   const JointSlot& j = w.joints[slot];
   w.bodies[j.body_a].joints.push_back(slot);
   w.bodies[j.body_b].joints.push_back(slot);

@@ -117,6 +117,9 @@ struct World::Impl {
   SolverBodies solver_bodies;
   std::vector<double> extra_inertia;  // per body slot (empty: none), from geometric_inertia
   double last_substep = 0.0;          // s, of the last step (for joint forces)
+  // A joint was created since the last step: it has no force for the geometric inertia yet,
+  // so the next step recomputes that inertia after its first sub-step (see step.cpp).
+  bool joints_without_history = false;
   // Chooses one thread or all for each step from how fast recent steps ran with each.
   // Results do not depend on the count, so it may change at any step.
   struct ThreadPolicy {
@@ -128,8 +131,11 @@ struct World::Impl {
 
   void unpack_joints();  // save impulses to slots and mark for re-pack
   // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment
-  // mode resolvable at sub-step h: h^2 sum over its joints of |force| |anchor offset|.
-  void geometric_inertia(float h);
+  // mode resolvable at sub-step h: h^2 sum over its joints of |force| |anchor offset|, the
+  // forces being the lanes' impulses over `impulse_substep` (s; 0: none known, no pass).
+  void geometric_inertia(float h, double impulse_substep);
+  // Rewrites this thread's share of the dynamic bodies' mass records from extra_inertia.
+  void refresh_inertia(const solver::Share& share);
   void list_bodies();  // (re)sizes the records and the movable list after body changes
   void prepare_bodies(float h, const solver::Share& share);
   void finalize_bodies(const solver::Share& share);
