@@ -14,13 +14,16 @@ namespace {
 struct Corner {
   double light_mass, heavy_mass, inertia, anchor, substep;
   Spring spring;
+  double rigid_hertz;  // and max_correction_speed
 };
 
 std::string describe(const Corner& c) {
   char text[200];
   std::snprintf(text, sizeof text,
-                "masses %g / %g kg, inertia %g kg m^2, anchor %g m, sub-step %g s, spring %g Hz",
-                c.light_mass, c.heavy_mass, c.inertia, c.anchor, c.substep, c.spring.hertz);
+                "masses %g / %g kg, inertia %g kg m^2, anchor %g m, sub-step %g s, spring %g Hz "
+                "zeta %g, rigid %g Hz",
+                c.light_mass, c.heavy_mass, c.inertia, c.anchor, c.substep, c.spring.hertz,
+                c.spring.damping_ratio, c.rigid_hertz);
   return text;
 }
 
@@ -29,8 +32,11 @@ std::string describe(const Corner& c) {
 void expect_finite_at(const Corner& c) {
   constexpr double kSpeedLimit = 1e6;  // the largest max_linear_speed
   constexpr double kFar = 1e9;         // positions, anchors, gravity
-  World world(
-      WorldSettings{.gravity = {0.0, -kFar, kFar}, .substeps = 1, .max_linear_speed = kSpeedLimit});
+  World world(WorldSettings{.gravity = {0.0, -kFar, kFar},
+                            .substeps = 1,
+                            .rigid_hertz = c.rigid_hertz,
+                            .max_correction_speed = c.rigid_hertz,
+                            .max_linear_speed = kSpeedLimit});
   BodyDef driver;
   driver.type = BodyType::Kinematic;
   driver.position = {-kFar, 0.0, 0.0};
@@ -87,8 +93,10 @@ TEST(FloatEnvelope, CornersOfTheAcceptedRangesStayFinite) {
       for (double inertia : {1e-15, 1e24})
         for (double anchor : {0.0, 1e9})
           for (double substep : {1e-9, 1e3})
-            for (Spring spring : {Spring::rigid(), Spring::soft(1e9, 0.0), Spring::soft(1e-3, 1e9)})
-              expect_finite_at({light, heavy, inertia, anchor, substep, spring});
+            for (Spring spring : {Spring::rigid(), Spring::soft(1e9, 0.0), Spring::soft(1e-6, 0.0),
+                                  Spring::soft(1e-6, 1e9)})
+              for (double rigid_hertz : {1e-6, 1e9})
+                expect_finite_at({light, heavy, inertia, anchor, substep, spring, rigid_hertz});
 }
 
 // Gravity cannot push a body past the speed limit: the clamp holds it there, in any direction.

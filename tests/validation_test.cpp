@@ -286,6 +286,24 @@ TEST(Validation, FloatEnvelopeRejections) {
       },
       "inertia", "1e-16");
   expect_rejected([](Fixture& f) { f.world.step(1e-10); }, "dt", "1e-10");
+  // A positive frequency so low that the softness's 1/a overflows float (the fuzzer's second
+  // finding: rigid_hertz and a spring at 1e-45 Hz turned a body NaN).
+  expect_rejected(
+      [](Fixture& f) {
+        WorldSettings s = f.world.settings();
+        s.rigid_hertz = 1e-45;
+        f.world.set_settings(s);
+      },
+      "WorldSettings.rigid_hertz", "1e-45");
+  expect_rejected(
+      [](Fixture& f) {
+        BallJointDef j;
+        j.body_a = f.a;
+        j.body_b = f.b;
+        j.spring = Spring::soft(1e-7, 60.0);
+        f.world.create_ball_joint(j);
+      },
+      "BallJointDef.spring.hertz", "1e-07");
   expect_rejected([](Fixture& f) { f.world.step(5e3); }, "dt", "5000");
   expect_rejected(
       [](Fixture& f) {

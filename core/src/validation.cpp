@@ -56,8 +56,9 @@ void non_negative(std::string_view call, std::string_view field, double value) {
 }
 
 void positive(std::string_view call, std::string_view field, double value) {
-  if (!(std::isfinite(value) && value > 0.0 && value <= kMaxMagnitude)) {
-    reject(call, field, format(value), "must be finite, > 0 and <= " + format(kMaxMagnitude));
+  if (!(std::isfinite(value) && value >= kMinPositive && value <= kMaxMagnitude)) {
+    reject(call, field, format(value),
+           "must be in [" + format(kMinPositive) + ", " + format(kMaxMagnitude) + "]");
   }
 }
 
@@ -101,9 +102,12 @@ void inertia_tensor(std::string_view call, std::string_view field, const Eigen::
 void spring(std::string_view call, std::string_view field, const Spring& s) {
   const std::string hertz_field = std::string(field) + ".hertz";
   const std::string zeta_field = std::string(field) + ".damping_ratio";
-  if (std::isnan(s.hertz) || s.hertz < 0.0 || (s.hertz > kMaxMagnitude && !s.is_rigid())) {
+  // A positive frequency below kMinPositive would overflow the softness's 1/a in float.
+  if (std::isnan(s.hertz) || s.hertz < 0.0 || (s.hertz > 0.0 && s.hertz < kMinPositive) ||
+      (s.hertz > kMaxMagnitude && !s.is_rigid())) {
     reject(call, hertz_field, format(s.hertz),
-           "must be in [0, " + format(kMaxMagnitude) + "] (0 = free) or +infinity (rigid)");
+           "must be 0 (free), in [" + format(kMinPositive) + ", " + format(kMaxMagnitude) +
+               "], or +infinity (rigid)");
   }
   non_negative(call, zeta_field, s.damping_ratio);
 }
@@ -160,9 +164,9 @@ void settings(std::string_view call, const WorldSettings& s) {
            "must be in [0, 256] (0 = all of the machine's cores)");
   }
   positive(call, "WorldSettings.rigid_hertz", s.rigid_hertz);
-  if (!(s.max_linear_speed > 0.0 && s.max_linear_speed <= kMaxSpeedLimit)) {
+  if (!(s.max_linear_speed >= kMinPositive && s.max_linear_speed <= kMaxSpeedLimit)) {
     reject(call, "WorldSettings.max_linear_speed", format(s.max_linear_speed),
-           "must be in (0, " + format(kMaxSpeedLimit) + "] m/s");
+           "must be in [" + format(kMinPositive) + ", " + format(kMaxSpeedLimit) + "] m/s");
   }
   non_negative(call, "WorldSettings.rigid_damping_ratio", s.rigid_damping_ratio);
   positive(call, "WorldSettings.max_correction_speed", s.max_correction_speed);

@@ -15,6 +15,8 @@ namespace softstep::validation {
 // Bounds of the float envelope (validation.cpp explains them): every position, length,
 // anchor, gravity, frequency and other plain magnitude lies within +-kMaxMagnitude.
 inline constexpr double kMaxMagnitude = 1e9;
+// The smallest positive frequency or speed: below it float's 1/(h omega)^2 terms overflow.
+inline constexpr double kMinPositive = 1e-6;
 inline constexpr double kMaxSpeedLimit = 1e6;  // m/s, the largest max_linear_speed
 inline constexpr double kMinSubstep = 1e-9;    // s
 inline constexpr double kMaxSubstep = 1e3;     // s

@@ -133,6 +133,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             j.local_anchor_b = in.ConsumeBool() ? Eigen::Vector3d::Zero() : vec(in);
             j.spring = spring(in);
             joints.push_back(world.create_ball_joint(j));
+            if (verbose()) {
+              std::fprintf(stderr, "ball %u-%u ra (%g %g %g) rb (%g %g %g) hertz %g zeta %g\n",
+                           j.body_a.index, j.body_b.index, j.local_anchor_a.x(),
+                           j.local_anchor_a.y(), j.local_anchor_a.z(), j.local_anchor_b.x(),
+                           j.local_anchor_b.y(), j.local_anchor_b.z(), j.spring.hertz,
+                           j.spring.damping_ratio);
+            }
           } else {
             softstep::DistanceJointDef j;
             j.body_a = pick(in, bodies);
@@ -144,6 +151,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             j.max_length = in.ConsumeBool() ? INFINITY : value(in);
             j.spring = spring(in);
             joints.push_back(world.create_distance_joint(j));
+            if (verbose()) {
+              std::fprintf(stderr,
+                           "distance %u-%u ra (%g %g %g) rb (%g %g %g) rest %g min %g max %g "
+                           "hertz %g zeta %g\n",
+                           j.body_a.index, j.body_b.index, j.local_anchor_a.x(),
+                           j.local_anchor_a.y(), j.local_anchor_a.z(), j.local_anchor_b.x(),
+                           j.local_anchor_b.y(), j.local_anchor_b.z(), j.rest_length, j.min_length,
+                           j.max_length, j.spring.hertz, j.spring.damping_ratio);
+            }
           }
           break;
         }
@@ -184,6 +200,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           s.rigid_hertz = value(in);
           s.simd = static_cast<softstep::SimdWidth>(in.ConsumeIntegralInRange<int>(0, 3));
           world.set_settings(s);
+          if (verbose()) {
+            std::fprintf(stderr,
+                         "settings gravity (%g %g %g) substeps %d solve %d relax %d warm %d "
+                         "rigid_hertz %g max_speed %g\n",
+                         s.gravity.x(), s.gravity.y(), s.gravity.z(), s.substeps,
+                         s.solve_iterations, s.relax_iterations, int(s.warm_start), s.rigid_hertz,
+                         s.max_linear_speed);
+          }
           break;
         }
         default: {
