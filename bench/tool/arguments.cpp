@@ -93,4 +93,11 @@ void Arguments::reject_leftovers() const {
   }
 }
 
+SimdWidth parse_simd(const std::string& name) {
+  if (name == "scalar") return SimdWidth::Scalar;
+  if (name == "sse") return SimdWidth::Sse;
+  if (name == "avx2") return SimdWidth::Avx2;
+  return SimdWidth::Best;
+}
+
 }  // namespace softstep::tool

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "softstep/world_settings.hpp"
+
 namespace softstep::tool {
 
 struct UsageError : std::runtime_error {
@@ -34,5 +36,8 @@ class Arguments {
   int find(const std::string& flag) const;
   std::string value_of(const std::string& flag);
 };
+
+// "best", "scalar", "sse" or "avx2" (take_choice has checked it).
+SimdWidth parse_simd(const std::string& name);
 
 }  // namespace softstep::tool

@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
   try {
     if (command == "profile") {
       if (args.take_switch("--help")) {
-        std::puts(kProfileUsage);
+        std::puts(kProfileUsage.c_str());
         return 0;
       }
       return profile_command(args);
@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "softstep: %s\n%s\n", e.what(),
-                 command == "profile" ? kProfileUsage : usage);
+                 command == "profile" ? kProfileUsage.c_str() : usage);
     return 2;
   } catch (const softstep::InvalidArgument& e) {
     std::fprintf(stderr, "%s\n", e.what());
