@@ -25,6 +25,9 @@ class Arguments {
   std::string take_choice(const std::string& flag, const std::vector<std::string>& choices,
                           const std::string& fallback);
   long take_int(const std::string& flag, long fallback, long min, long max);
+  // A comma-separated list of whole numbers, each in [min, max]: "1,2,4".
+  std::vector<long> take_int_list(const std::string& flag, const std::string& fallback, long min,
+                                  long max);
   double take_double(const std::string& flag, double fallback, double min, double max);
   bool has(const std::string& flag) const;
   // Throws UsageError naming any flag nobody took.
