@@ -8,10 +8,12 @@
 namespace softstep::tool {
 
 const char* const kSceneUsage =
-    "  chain [--links N] [--chains M] [--joint ball|distance] [--end-mass KG]   (default: chain,\n"
-    "      10000 links) N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out\n"
-    "      horizontally, the first link jointed to the static world; M parallel chains 1 m\n"
-    "      apart. --end-mass: the last link weighs KG instead (a mass-ratio chain).\n"
+    "  chain [--links N] [--chains M] [--joint ball|distance] [--end-mass KG]\n"
+    "        [--layout horizontal|hanging]   (default: chain, 10000 links)\n"
+    "      N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally (or\n"
+    "      hanging straight down, unstretched), the first link jointed to the static world;\n"
+    "      M parallel chains 1 m apart. --end-mass: the last link weighs KG instead (a\n"
+    "      mass-ratio chain).\n"
     "  grid [--size N]   (default 100)\n"
     "      N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top row\n"
     "      static, ball joints to the right and lower neighbours.\n"
@@ -31,7 +33,8 @@ SceneChoice take_scene_options(Arguments& args) {
     if (c.scene != owner && args.has(flag))
       throw UsageError(std::string(flag) + " is a " + owner + " option");
   };
-  for (const char* flag : {"--links", "--chains", "--joint", "--end-mass"}) only_for(flag, "chain");
+  for (const char* flag : {"--links", "--chains", "--joint", "--end-mass", "--layout"})
+    only_for(flag, "chain");
   only_for("--size", "grid");
   for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
 
@@ -40,6 +43,10 @@ SceneChoice take_scene_options(Arguments& args) {
   c.chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball"
                       ? scenes::ChainJoint::Ball
                       : scenes::ChainJoint::Distance;
+  c.chain.layout =
+      args.take_choice("--layout", {"horizontal", "hanging"}, "horizontal") == "hanging"
+          ? scenes::ChainLayout::Hanging
+          : scenes::ChainLayout::Horizontal;
   if (args.has("--end-mass")) {
     c.chain.link_masses.assign(static_cast<std::size_t>(c.chain.links), c.chain.link_mass);
     c.chain.link_masses.back() = args.take_double("--end-mass", 1.0, 1e-6, 1e9);
@@ -60,14 +67,12 @@ SceneChoice take_scene_options(Arguments& args) {
   return c;
 }
 
-namespace {
 std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<BodyId>& bodies) {
   std::vector<Eigen::Vector3d> p;
   p.reserve(bodies.size());
   for (BodyId b : bodies) p.push_back(world.body(b).position);
   return p;
 }
-}  // namespace
 
 SceneRun build_scene(World& world, const SceneChoice& c) {
   SceneRun run;
@@ -82,6 +87,7 @@ SceneRun build_scene(World& world, const SceneChoice& c) {
     run.description = "chain: " + std::to_string(chain.chains) + " x " + std::to_string(links) +
                       " links, " + (chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance") +
                       " joints, " + c.spring_text;
+    if (chain.layout == scenes::ChainLayout::Hanging) run.description += ", hanging";
     if (!chain.link_masses.empty())
       run.description += ", end mass " + format_number(chain.link_masses.back()) + " kg";
     run.reach = chain.link_spacing * static_cast<double>(links);

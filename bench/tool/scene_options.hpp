@@ -43,4 +43,7 @@ struct SceneRun {
 
 SceneRun build_scene(World& world, const SceneChoice& choice);
 
+// The bodies' centres now, m.
+std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<BodyId>& bodies);
+
 }  // namespace softstep::tool

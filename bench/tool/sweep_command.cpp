@@ -25,13 +25,15 @@ const std::string kSweepUsage =
     std::string(
         "usage: softstep sweep [chain|grid|bridge] [scene options] --out DIR [--steps S]\n"
         "         [--substeps LIST] [--relax LIST] [--iterations LIST] [--warm-start on,off]\n"
-        "         [--simd LIST] [--threads LIST] [--runs R] [--error drift|joint|reference]\n"
+        "         [--simd LIST] [--threads LIST] [--rigid-hertz LIST] [--runs R]\n"
+        "         [--error drift|joint|reference]\n"
         "         [--reference-substeps N] [--reference-iterations N] [--probes K]\n") +
     kSceneUsage +
     "\n  Every combination of the lists (comma-separated; defaults: substeps 1,2,4,8,16, relax\n"
-    "  0,1,2,4, iterations 1, warm start on, simd best, threads 1) runs S steps of 1/60 s\n"
-    "  (default 60) R times (default 3); ms per step is the median over the runs of each run's\n"
-    "  median. The first run measures the errors:\n"
+    "  0,1,2,4, iterations 1, warm start on, simd best, threads 1, rigid hertz 60) runs S\n"
+    "  steps of 1/60 s (default 60) once to measure its errors and R more times (default 3),\n"
+    "  all settings in turn, to time it: ms per step is the median over the R runs of each run's\n"
+    "  median step. The errors:\n"
     "    joint error     C of every joint after every step (max, and RMS over steps and joints)\n"
     "    drift           RMS distance of the bodies from the fine-step reference (the same scene\n"
     "                    at N sub-steps (default 64) and N solve and relax iterations (default\n"
@@ -52,12 +54,14 @@ struct Setting {
   bool warm_start;
   SimdWidth simd;
   int threads;
+  int rigid_hertz;
 };
 
 std::string label(const Setting& s) {
   std::string l = std::to_string(s.substeps) + " sub, " + std::to_string(s.relax) + " relax, " +
                   std::to_string(s.iterations) + " it";
   if (!s.warm_start) l += ", cold";
+  if (s.rigid_hertz != 60) l += ", " + std::to_string(s.rigid_hertz) + " Hz";
   return l;
 }
 
@@ -96,14 +100,8 @@ WorldSettings settings_of(const Setting& s) {
   w.warm_start = s.warm_start;
   w.simd = s.simd;
   w.threads = s.threads;
+  w.rigid_hertz = s.rigid_hertz;
   return w;
-}
-
-std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<BodyId>& bodies) {
-  std::vector<Eigen::Vector3d> p;
-  p.reserve(bodies.size());
-  for (BodyId b : bodies) p.push_back(world.body(b).position);
-  return p;
 }
 
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
@@ -124,6 +122,7 @@ int sweep_command(Arguments& args) {
   const std::string warm_text = args.take_string("--warm-start", "on");
   const std::string simd_text = args.take_string("--simd", "best");
   const std::vector<long> threads = args.take_int_list("--threads", "1", 0, 256);
+  const std::vector<long> rigid_hertz = args.take_int_list("--rigid-hertz", "60", 1, 1000000);
   const long runs = args.take_int("--runs", 3, 1, 1000);
   const std::string error_name =
       args.take_choice("--error", {"drift", "joint", "reference"}, "drift");
@@ -156,8 +155,9 @@ int sweep_command(Arguments& args) {
         for (bool w : warm_choices)
           for (SimdWidth v : simd_choices)
             for (long t : threads)
-              grid.push_back({static_cast<int>(s), static_cast<int>(r), static_cast<int>(i), w, v,
-                              static_cast<int>(t)});
+              for (long k : rigid_hertz)
+                grid.push_back({static_cast<int>(s), static_cast<int>(r), static_cast<int>(i), w, v,
+                                static_cast<int>(t), static_cast<int>(k)});
 
   // Steps at which positions are compared with the reference and energy is measured, and
   // the steps whose first sub-step is checked against the exact solve.
@@ -193,12 +193,16 @@ int sweep_command(Arguments& args) {
   std::size_t body_count = 0, joint_count = 0;
   std::vector<Measured> results(grid.size());
   {
-    ProgressBar bar("sweep", static_cast<long>(grid.size()) * runs);
-    for (std::size_t g = 0; g < grid.size(); ++g) {
-      const Setting& setting = grid[g];
-      Measured& m = results[g];
-      std::vector<double> run_ms;
-      for (long r = 0; r < runs; ++r) {
+    // Round 0 measures the errors; rounds 1..runs time the steps. A round runs every setting
+    // once, so a burst of load from elsewhere on the machine hits one run of many settings
+    // rather than every run of one.
+    std::vector<std::vector<double>> run_ms(grid.size());
+    const auto settings_count = static_cast<long>(grid.size());
+    ProgressBar bar("sweep", settings_count * (runs + 1));
+    for (long r = 0; r <= runs; ++r) {
+      for (std::size_t g = 0; g < grid.size(); ++g) {
+        const Setting& setting = grid[g];
+        Measured& m = results[g];
         const bool measuring = r == 0;
         World world(settings_of(setting));
         const SceneRun run = build_scene(world, choice);
@@ -211,12 +215,14 @@ int sweep_command(Arguments& args) {
         std::vector<double> step_ms;
         double sum_sq = 0.0;
         for (long i = 1; i <= steps; ++i) {
-          const bool probe = measuring && probed(i);
+          const bool probe = measuring && probed(i);  // capturing costs a copy: not timed
           world.set_solve_capture(probe);
           const auto t0 = std::chrono::steady_clock::now();
           world.step(kDt);
-          if (!probe) step_ms.push_back(elapsed_ms(t0));  // capturing costs a copy: not timed
-          if (!measuring) continue;
+          if (!measuring) {
+            step_ms.push_back(elapsed_ms(t0));
+            continue;
+          }
           const scenes::JointErrors e = scenes::joint_errors(world, run.joints);
           m.max_joint_error = std::max(m.max_joint_error, e.max);
           sum_sq += e.rms * e.rms;
@@ -251,11 +257,11 @@ int sweep_command(Arguments& args) {
           if (!std::isfinite(m.max_joint_error) || !std::isfinite(m.drift))
             m.max_joint_error = m.rms_joint_error = m.drift = kNaN;
         }
-        run_ms.push_back(median(step_ms));
-        bar.update(static_cast<long>(g) * runs + r + 1);
+        if (!measuring) run_ms[g].push_back(median(step_ms));
+        bar.update(r * settings_count + static_cast<long>(g) + 1);
       }
-      m.ms = median(run_ms);
     }
+    for (std::size_t g = 0; g < grid.size(); ++g) results[g].ms = median(run_ms[g]);
   }
 
   const auto error_of = [&](const Measured& m) {
@@ -278,7 +284,7 @@ int sweep_command(Arguments& args) {
 
   std::filesystem::create_directories(out);
   std::string csv =
-      "substeps,relax,iterations,warm_start,simd,threads,ms_per_step,max_joint_error_m,"
+      "substeps,relax,iterations,warm_start,simd,threads,rigid_hertz,ms_per_step,max_joint_error_m,"
       "rms_joint_error_m,velocity_residual,energy_drift,reference_distance,drift_m,stretch,"
       "pareto\n";
   for (std::size_t g = 0; g < grid.size(); ++g) {
@@ -286,8 +292,9 @@ int sweep_command(Arguments& args) {
     const Measured& m = results[g];
     csv += std::to_string(s.substeps) + "," + std::to_string(s.relax) + "," +
            std::to_string(s.iterations) + "," + (s.warm_start ? "1" : "0") + "," +
-           simd_width_name(s.simd) + "," + std::to_string(s.threads) + "," + format_number(m.ms) +
-           "," + format_number(m.max_joint_error) + "," + format_number(m.rms_joint_error) + "," +
+           simd_width_name(s.simd) + "," + std::to_string(s.threads) + "," +
+           std::to_string(s.rigid_hertz) + "," + format_number(m.ms) + "," +
+           format_number(m.max_joint_error) + "," + format_number(m.rms_joint_error) + "," +
            format_number(m.velocity_residual) + "," + format_number(m.energy_drift) + "," +
            format_number(m.reference_distance) + "," + format_number(m.drift) + "," +
            format_number(m.stretch) + "," + (front[g] ? "1" : "0") + "\n";
