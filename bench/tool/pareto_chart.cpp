@@ -120,9 +120,15 @@ std::string pareto_svg(const std::vector<CostPoint>& points, const std::vector<b
     for (std::size_t i : on_front)
       s += num(px(points[i].ms)) + "," + num(py(points[i].error)) + " ";
     s += "\"/>\n";
-    for (std::size_t i : on_front) {
-      s += "<text x=\"" + num(px(points[i].ms) + 7) + "\" y=\"" + num(py(points[i].error) - 7) +
-           "\" font-size=\"11\" fill=\"#d62728\">" + escape(labels[i]) + "</text>\n";
+    // Neighbours on the front are labelled on alternate sides (above right, below left), so
+    // that close points do not write over each other.
+    for (std::size_t k = 0; k < on_front.size(); ++k) {
+      const std::size_t i = on_front[k];
+      const bool above = k % 2 == 0;
+      s += "<text x=\"" + num(px(points[i].ms) + (above ? 7 : -7)) + "\" y=\"" +
+           num(py(points[i].error) + (above ? -7 : 16)) + "\" text-anchor=\"" +
+           (above ? "start" : "end") + "\" font-size=\"11\" fill=\"#d62728\">" + escape(labels[i]) +
+           "</text>\n";
     }
   }
   // Legend.
