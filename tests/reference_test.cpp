@@ -169,6 +169,32 @@ TEST(ExactReference, IterationsConvergeToItOnAHundredLinkChain) {
   EXPECT_LT(distance_after(256), 1e-4);
 }
 
+// The closed forms agree with each other: the talk's implicit-Euler spring converges to the
+// exact oscillator as h -> 0, at first order, for any damping.
+TEST(Analytic, ImplicitEulerSpringConvergesToTheExactOscillator) {
+  const double mass = 2.0, omega = 2.0 * std::numbers::pi * 3.0, x0 = 0.1, v0 = -0.5, t = 0.4;
+  for (const double zeta : {0.0, 0.3, 1.0, 2.5}) {
+    const double exact = analytic::harmonic_oscillator_position(x0, v0, omega, zeta, t);
+    const auto error_at = [&](int steps) {
+      const double h = t / steps;
+      double x = x0, v = v0;
+      for (int i = 0; i < steps; ++i) {
+        v = analytic::implicit_euler_spring_velocity(x, v, mass, mass * omega * omega,
+                                                     2.0 * mass * zeta * omega, h);
+        x += h * v;
+      }
+      return std::abs(x - exact);
+    };
+    const double coarse = error_at(4000), fine = error_at(8000);
+    EXPECT_LT(fine, 1e-3 * x0) << "zeta " << zeta;
+    EXPECT_NEAR(coarse / fine, 2.0, 0.1) << "zeta " << zeta;  // first order
+  }
+  // Small-angle pendulum: a point mass on a rod of length L swings at sqrt(g / L).
+  EXPECT_DOUBLE_EQ(analytic::small_angle_pendulum_frequency(2.0, 0.5, 0.0, 9.81),
+                   std::sqrt(9.81 / 0.5));
+  EXPECT_DOUBLE_EQ(analytic::small_angle_pendulum_angle(0.1, 2.0, std::numbers::pi), 0.1);
+}
+
 // Capturing only copies: the step, with one thread or two, is bit for bit the same.
 TEST(SolveCapture, LeavesTheStepUnchanged) {
   std::vector<std::uint64_t> hashes;
