@@ -44,12 +44,13 @@ std::string decade_label(int k) {
   return b;
 }
 
-// A log axis over whole decades that holds [lo, hi].
+// A log axis over whole decades that holds [lo, hi] with a fifth of a decade to spare, so
+// that no point sits on the frame with its label over the axis.
 struct LogAxis {
   int first, last;
   LogAxis(double lo, double hi)
-      : first(static_cast<int>(std::floor(std::log10(lo)))),
-        last(std::max(first + 1, static_cast<int>(std::ceil(std::log10(hi))))) {}
+      : first(static_cast<int>(std::floor(std::log10(lo) - 0.2))),
+        last(std::max(first + 1, static_cast<int>(std::ceil(std::log10(hi) + 0.2)))) {}
   double fraction(double v) const { return (std::log10(v) - first) / (last - first); }
 };
 
