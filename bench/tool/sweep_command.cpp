@@ -104,6 +104,12 @@ WorldSettings settings_of(const Setting& s) {
   return w;
 }
 
+// The larger of two error readings, NaN when either is: a run that blew up must not pass
+// for accurate because std::max drops NaN.
+double worst(double a, double b) {
+  return std::isnan(a) || std::isnan(b) ? kNaN : std::max(a, b);
+}
+
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
       .count();
@@ -233,16 +239,17 @@ int sweep_command(Arguments& args) {
             continue;
           }
           const scenes::JointErrors e = scenes::joint_errors(world, run.joints);
-          m.max_joint_error = std::max(m.max_joint_error, e.max);
+          m.max_joint_error = worst(m.max_joint_error, e.max);
           sum_sq += e.rms * e.rms;
           if (sampled(i)) {
             const double energy =
                 metrics::mechanical_energy(world, run.bodies, run.joints) + offset;
-            m.energy_drift = std::max(m.energy_drift, std::abs(energy - e0) / std::abs(e0));
-            m.drift = std::max(
+            m.energy_drift =
+                worst(m.energy_drift, e0 != 0.0 ? std::abs(energy - e0) / std::abs(e0) : kNaN);
+            m.drift = worst(
                 m.drift, metrics::position_drift(world, run.bodies,
                                                  reference_positions[static_cast<std::size_t>(i)]));
-            m.stretch = std::max(m.stretch, run.stretch_ratio());
+            m.stretch = worst(m.stretch, run.stretch_ratio());
           }
           if (probe) {
             try {
@@ -251,8 +258,8 @@ int sweep_command(Arguments& args) {
               const Eigen::VectorXd residual = reference::row_residual(
                   system, system.velocity_after_solve, system.impulse_after_solve);
               m.reference_distance =
-                  std::max(m.reference_distance, reference::reference_distance(system, exact));
-              m.velocity_residual = std::max(
+                  worst(m.reference_distance, reference::reference_distance(system, exact));
+              m.velocity_residual = worst(
                   m.velocity_residual,
                   residual.size() ? residual.norm() / std::sqrt(double(residual.size())) : 0.0);
             } catch (const std::exception&) {
