@@ -5,6 +5,7 @@
 #include <numbers>
 #include <vector>
 
+#include "softstep/analytic.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
@@ -66,7 +67,8 @@ TEST(Pendulum, DistanceJointPointMassPeriodWithinOnePercent) {
   const double length = 1.0, angle = 5.0 * std::numbers::pi / 180.0;
   Pendulum p = make_pendulum(false, length, angle, 0.05);
   // Anchored at the centre of mass, the bob's spin does not couple: a point pendulum.
-  const double expected = 2.0 * std::numbers::pi * std::sqrt(length / kG);
+  const double expected =
+      2.0 * std::numbers::pi / analytic::small_angle_pendulum_frequency(1.0, length, 0.0, kG);
   const double measured = measure_period(p.world, p.bob, 1.0 / 60.0, 60 * 12);
   EXPECT_NEAR(measured, expected, 0.01 * expected);
 }
@@ -74,9 +76,10 @@ TEST(Pendulum, DistanceJointPointMassPeriodWithinOnePercent) {
 TEST(Pendulum, BallJointPhysicalPendulumPeriodWithinOnePercent) {
   const double length = 1.0, radius = 0.2, angle = 5.0 * std::numbers::pi / 180.0;
   Pendulum p = make_pendulum(true, length, angle, radius);
-  // Hinged at a point `length` from the centre: I_pivot = I_cm + m L^2.
-  const double i_pivot = 0.4 * radius * radius + length * length;
-  const double expected = 2.0 * std::numbers::pi * std::sqrt(i_pivot / (kG * length));
+  // Hinged at a point `length` from the centre: a physical pendulum.
+  const double expected =
+      2.0 * std::numbers::pi /
+      analytic::small_angle_pendulum_frequency(1.0, length, 0.4 * radius * radius, kG);
   const double measured = measure_period(p.world, p.bob, 1.0 / 60.0, 60 * 12);
   EXPECT_NEAR(measured, expected, 0.01 * expected);
 }

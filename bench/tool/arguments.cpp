@@ -1,5 +1,6 @@
 #include "tool/arguments.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -75,6 +76,27 @@ long Arguments::take_int(const std::string& flag, long fallback, long min, long 
   return n;
 }
 
+std::vector<long> Arguments::take_int_list(const std::string& flag, const std::string& fallback,
+                                           long min, long max) {
+  const std::string text = take_string(flag, fallback);
+  std::vector<long> out;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    char* end = nullptr;
+    errno = 0;
+    const long n = std::strtol(item.c_str(), &end, 10);
+    if (item.empty() || errno != 0 || *end != '\0' || n < min || n > max) {
+      throw UsageError(flag + " " + text + ": expected whole numbers in [" + std::to_string(min) +
+                       ", " + std::to_string(max) + "] separated by commas");
+    }
+    out.push_back(n);
+    at = comma + 1;
+  }
+  return out;
+}
+
 double Arguments::take_double(const std::string& flag, double fallback, double min, double max) {
   if (!has(flag)) return fallback;
   const std::string v = value_of(flag);
@@ -91,6 +113,13 @@ void Arguments::reject_leftovers() const {
   for (std::size_t i = 0; i < words_.size(); ++i) {
     if (!used_[i]) throw UsageError("unknown argument " + words_[i]);
   }
+}
+
+SimdWidth parse_simd(const std::string& name) {
+  if (name == "scalar") return SimdWidth::Scalar;
+  if (name == "sse") return SimdWidth::Sse;
+  if (name == "avx2") return SimdWidth::Avx2;
+  return SimdWidth::Best;
 }
 
 }  // namespace softstep::tool

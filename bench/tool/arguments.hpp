@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "softstep/world_settings.hpp"
+
 namespace softstep::tool {
 
 struct UsageError : std::runtime_error {
@@ -23,6 +25,9 @@ class Arguments {
   std::string take_choice(const std::string& flag, const std::vector<std::string>& choices,
                           const std::string& fallback);
   long take_int(const std::string& flag, long fallback, long min, long max);
+  // A comma-separated list of whole numbers, each in [min, max]: "1,2,4".
+  std::vector<long> take_int_list(const std::string& flag, const std::string& fallback, long min,
+                                  long max);
   double take_double(const std::string& flag, double fallback, double min, double max);
   bool has(const std::string& flag) const;
   // Throws UsageError naming any flag nobody took.
@@ -34,5 +39,8 @@ class Arguments {
   int find(const std::string& flag) const;
   std::string value_of(const std::string& flag);
 };
+
+// "best", "scalar", "sse" or "avx2" (take_choice has checked it).
+SimdWidth parse_simd(const std::string& name);
 
 }  // namespace softstep::tool

@@ -1,4 +1,4 @@
-// softstep: the command-line tool. Subcommands: profile.
+// softstep: the command-line tool. Subcommands: profile, sweep, hardcases.
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -8,11 +8,13 @@
 #include "tool/arguments.hpp"
 #include "tool/hardcases_command.hpp"
 #include "tool/profile_command.hpp"
+#include "tool/sweep_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace softstep::tool;
   const char* usage =
-      "usage: softstep profile [options]   (softstep profile --help for the options)";
+      "usage: softstep profile|sweep|hardcases [options]   (softstep COMMAND --help for the "
+      "options)";
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
     std::puts(usage);
     return argc < 2 ? 2 : 0;
@@ -22,10 +24,17 @@ int main(int argc, char** argv) {
   try {
     if (command == "profile") {
       if (args.take_switch("--help")) {
-        std::puts(kProfileUsage);
+        std::puts(kProfileUsage.c_str());
         return 0;
       }
       return profile_command(args);
+    }
+    if (command == "sweep") {
+      if (args.take_switch("--help")) {
+        std::puts(kSweepUsage.c_str());
+        return 0;
+      }
+      return sweep_command(args);
     }
     if (command == "hardcases") {
       if (args.take_switch("--help")) {
@@ -37,7 +46,9 @@ int main(int argc, char** argv) {
     throw UsageError("unknown command '" + command + "'");
   } catch (const UsageError& e) {
     std::fprintf(stderr, "softstep: %s\n%s\n", e.what(),
-                 command == "profile" ? kProfileUsage : usage);
+                 command == "profile" ? kProfileUsage.c_str()
+                 : command == "sweep" ? kSweepUsage.c_str()
+                                      : usage);
     return 2;
   } catch (const softstep::InvalidArgument& e) {
     std::fprintf(stderr, "%s\n", e.what());

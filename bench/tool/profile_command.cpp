@@ -8,56 +8,24 @@
 #include <string>
 #include <vector>
 
-#include "scenes/bridge_scene.hpp"
-#include "scenes/chain_scene.hpp"
-#include "scenes/grid_scene.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
+#include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
-const char* const kProfileUsage =
-    "usage: softstep profile [chain|grid|bridge] [scene options] [--hertz F --zeta Z] [--steps S]\n"
-    "                        [--substeps N] [--iterations N] [--relax N] [--threads T] [--simd scalar|sse|avx2]\n"
-    "                        [--no-warm-start] [--json FILE] [--csv FILE] [--trace FILE]\n"
-    "  chain [--links N] [--chains M] [--joint ball|distance]   (default: chain, 10000 links)\n"
-    "      N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally, the\n"
-    "      first link jointed to the static world; M parallel chains 1 m apart.\n"
-    "  grid [--size N]   (default 100)\n"
-    "      N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top row\n"
-    "      static, ball joints to the right and lower neighbours.\n"
-    "  bridge [--span N] [--loads K] [--load-mass M]   (default 1000 links, 10 loads of 50 kg)\n"
-    "      a chain of N links pinned at both ends, K heavy bodies hanging from it on 0.5 m rods.\n"
-    "  Stepped S times at 60 Hz (default 300). Rigid joints unless --hertz is given.\n"
+const std::string kProfileUsage =
+    std::string(
+        "usage: softstep profile [chain|grid|bridge] [scene options] [--steps S]\n"
+        "                        [--substeps N] [--iterations N] [--relax N] [--threads T] [--simd "
+        "scalar|sse|avx2]\n"
+        "                        [--no-warm-start] [--json FILE] [--csv FILE] [--trace FILE]\n") +
+    kSceneUsage +
+    "\n  Stepped S times at 60 Hz (default 300).\n"
     "  --json FILE   the figures as one JSON object; --csv FILE   one row per step;\n"
     "  --trace FILE  Chrome / Perfetto trace events: one slice per stage per thread.";
 
 namespace {
-
-SimdWidth parse_simd(const std::string& s) {
-  if (s == "scalar") return SimdWidth::Scalar;
-  if (s == "sse") return SimdWidth::Sse;
-  if (s == "avx2") return SimdWidth::Avx2;
-  return SimdWidth::Best;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
-
-namespace {
-
-// A built scene: what the report needs to know about it.
-struct SceneRun {
-  std::string description;
-  std::vector<JointId> joints;
-  double rows = 0.0;
-  std::function<double()> stretch_ratio;
-};
 
 struct CsvRow {
   double ms;
@@ -67,37 +35,7 @@ struct CsvRow {
 }  // namespace
 
 int profile_command(Arguments& args) {
-  const std::vector<std::string> positionals = args.take_positionals();
-  const std::string scene = positionals.empty() ? "chain" : positionals.front();
-  if (positionals.size() > 1 || (scene != "chain" && scene != "grid" && scene != "bridge")) {
-    throw UsageError("unknown scene '" + positionals.back() + "' (scenes: chain, grid, bridge)");
-  }
-  const auto only_for = [&](const char* flag, const char* owner) {
-    if (scene != owner && args.has(flag))
-      throw UsageError(std::string(flag) + " is a " + owner + " option");
-  };
-  for (const char* flag : {"--links", "--chains", "--joint"}) only_for(flag, "chain");
-  only_for("--size", "grid");
-  for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
-
-  scenes::ChainOptions chain;
-  chain.links = static_cast<int>(args.take_int("--links", 10000, 1, 100000000));
-  chain.chains = static_cast<int>(args.take_int("--chains", 1, 1, 1000000));
-  chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball"
-                    ? scenes::ChainJoint::Ball
-                    : scenes::ChainJoint::Distance;
-  scenes::GridOptions grid;
-  grid.size = static_cast<int>(args.take_int("--size", 100, 2, 100000));
-  scenes::BridgeOptions bridge;
-  bridge.span = static_cast<int>(args.take_int("--span", 1000, 2, 100000000));
-  bridge.loads = static_cast<int>(args.take_int("--loads", 10, 0, bridge.span));
-  bridge.load_mass = args.take_double("--load-mass", 50.0, 1e-3, 1e9);
-  const bool soft = args.has("--hertz");
-  const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
-  const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
-  if (!soft && args.has("--zeta"))
-    throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
-  chain.spring = grid.spring = bridge.spring = soft ? Spring::soft(hertz, zeta) : Spring::rigid();
+  const SceneChoice choice = take_scene_options(args);
   const long steps = args.take_int("--steps", 300, 1, 100000000);
   WorldSettings settings;
   settings.substeps = static_cast<int>(args.take_int("--substeps", 4, 1, 1000));
@@ -114,71 +52,7 @@ int profile_command(Arguments& args) {
 
   World world(settings);
   world.set_profiling(true);
-  SceneRun run;
-  const std::string spring_text =
-      soft ? "spring " + format_number(hertz) + " Hz, zeta " + format_number(zeta)
-           : std::string("rigid");
-  if (scene == "chain") {
-    const scenes::ChainScene built = scenes::build_chain(world, chain);
-    run.joints = built.joints;
-    run.rows = static_cast<double>(run.joints.size()) * scenes::rows_per_joint(chain.joint);
-    run.description = "chain: " + std::to_string(chain.chains) + " x " +
-                      std::to_string(chain.links) + " links, " +
-                      (chain.joint == scenes::ChainJoint::Ball ? "ball" : "distance") +
-                      " joints, " + spring_text;
-    // Path length through the link centres over the rest length, the worst chain.
-    run.stretch_ratio = [&world, built, spacing = chain.link_spacing] {
-      double worst = 0.0;
-      for (std::size_t c = 0; c < built.links.size(); ++c) {
-        double length = 0.0;
-        Eigen::Vector3d previous = world.body(built.anchors[c]).position;
-        for (BodyId b : built.links[c]) {
-          const Eigen::Vector3d p = world.body(b).position;
-          length += (p - previous).norm();
-          previous = p;
-        }
-        worst = std::max(worst, length / (spacing * static_cast<double>(built.links[c].size())));
-      }
-      return worst;
-    };
-  } else if (scene == "bridge") {
-    const scenes::BridgeScene built = scenes::build_bridge(world, bridge);
-    run.joints = built.joints;
-    run.rows = 3.0 * static_cast<double>(bridge.span + 1) + static_cast<double>(bridge.loads);
-    run.description = "bridge: " + std::to_string(bridge.span) + " links, " +
-                      std::to_string(bridge.loads) + " loads of " +
-                      format_number(bridge.load_mass) + " kg, " + spring_text;
-    // Path length along the deck over its rest length.
-    run.stretch_ratio = [&world, built, span = bridge.span] {
-      double length = 0.0;
-      for (std::size_t i = 1; i < built.links.size(); ++i) {
-        length +=
-            (world.body(built.links[i]).position - world.body(built.links[i - 1]).position).norm();
-      }
-      return length / (0.25 * (span - 1));
-    };
-  } else {
-    const scenes::GridScene built = scenes::build_grid(world, grid);
-    run.joints = built.joints;
-    run.rows = 3.0 * static_cast<double>(run.joints.size());
-    run.description = "grid: " + std::to_string(grid.size) + " x " + std::to_string(grid.size) +
-                      " bodies, ball joints, " + spring_text;
-    // Height of the hanging net over its rest height, the worst column.
-    run.stretch_ratio = [&world, built, n = static_cast<std::size_t>(grid.size),
-                         spacing = grid.spacing] {
-      double worst = 0.0;
-      for (std::size_t col = 0; col < n; ++col) {
-        double length = 0.0;
-        for (std::size_t row = 1; row < n; ++row) {
-          length += (world.body(built.bodies[row * n + col]).position -
-                     world.body(built.bodies[(row - 1) * n + col]).position)
-                        .norm();
-        }
-        worst = std::max(worst, length / (spacing * static_cast<double>(n - 1)));
-      }
-      return worst;
-    };
-  }
+  const SceneRun run = build_scene(world, choice);
 
   const double dt = 1.0 / 60.0;
   std::vector<double> step_ms;
@@ -230,8 +104,9 @@ int profile_command(Arguments& args) {
   std::printf(
       "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, %d "
       "thread(s), simd %s (%d lanes)%s\n",
-      steps, settings.substeps, settings.solve_iterations, settings.relax_iterations, world.last_step_profile().threads,
-      simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
+      steps, settings.substeps, settings.solve_iterations, settings.relax_iterations,
+      world.last_step_profile().threads, simd_width_name(layout.simd), layout.lanes,
+      settings.warm_start ? "" : ", no warm start");
   std::string per_color;
   for (std::uint32_t n : layout.joints_per_color)
     per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
@@ -258,7 +133,7 @@ int profile_command(Arguments& args) {
 
   if (!json_path.empty()) {
     JsonObject j;
-    j.add_string("scene", scene);
+    j.add_string("scene", choice.scene);
     j.add_string("description", run.description);
     j.add("bodies", static_cast<double>(world.body_count()));
     j.add("joints", static_cast<double>(world.joint_count()));

@@ -8,6 +8,9 @@
 
 namespace softstep::tool {
 
+// The median (upper median for an even count), 0 for none.
+double median(std::vector<double> values);
+
 // Shortest round-trip form of a number ("%.17g" trimmed), for JSON and CSV.
 std::string format_number(double value);
 

@@ -19,13 +19,17 @@ namespace softstep {
 
 namespace {
 
+// A rigid row is a stiff spring while solving; a quarter of the sub-step rate keeps it
+// well inside what one Gauss-Seidel pass can follow without overshoot.
+double rigid_solve_hertz(const WorldSettings& s, float h) {
+  return std::min(s.rigid_hertz, 0.25 / static_cast<double>(h));
+}
+
 simd::SubstepContext make_context(const WorldSettings& s, float h) {
   simd::SubstepContext ctx;
   ctx.h = h;
   ctx.inv_h = 1.0f / h;
-  // A rigid row is a stiff spring while solving; a quarter of the sub-step rate keeps it
-  // well inside what one Gauss-Seidel pass can follow without overshoot.
-  const double hertz = std::min(s.rigid_hertz, 0.25 / static_cast<double>(h));
+  const double hertz = rigid_solve_hertz(s, h);
   ctx.rigid =
       simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
   ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
@@ -208,6 +212,8 @@ void World::step(double dt) {
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
   const bool has_joints = w.joint_count > 0;
+  const bool capturing = w.capturing;
+  if (capturing) w.capture_step_start(h, rigid_solve_hertz(s, h));
 
   // Every thread runs every stage on its share; team_barrier orders the stages.
   const bool profiling = w.profiling;
@@ -248,6 +254,10 @@ void World::step(double dt) {
         solver.integrate_velocities(w.solver_bodies, ctx, share);
         solver::team_barrier(share);
       });
+      if (capturing && sub == 0) {
+        if (share.thread == 0) w.capture_before_solve();
+        solver::team_barrier(share);  // the warm start writes the velocities just copied
+      }
       if (has_joints) {
         stage(Stage::WarmStart, [&] {
           if (s.warm_start) {
@@ -261,6 +271,9 @@ void World::step(double dt) {
           for (int i = 0; i < s.solve_iterations; ++i) solver.solve(arrays, ctx, share);
         });
       }
+      // The solve ended at a barrier, and until the next barrier no thread writes velocities
+      // or impulses (positions move): thread 0 may read them.
+      if (capturing && sub == 0 && share.thread == 0) w.capture_solved();
       stage(Stage::IntegratePositions, [&] {
         solver.integrate_positions(w.solver_bodies, h, share);
         solver::team_barrier(share);

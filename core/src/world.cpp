@@ -374,4 +374,39 @@ JointReading World::joint_reading(JointId id) const {
   return r;
 }
 
+namespace {
+template <class Def>
+Def joint_ends(const World::Impl& w, const JointSlot& j) {
+  Def def;
+  def.body_a = {j.body_a, w.bodies[j.body_a].generation};
+  def.body_b = {j.body_b, w.bodies[j.body_b].generation};
+  def.local_anchor_a = j.local_anchor_a;
+  def.local_anchor_b = j.local_anchor_b;
+  def.spring = j.spring;
+  return def;
+}
+
+const JointSlot& joint_of_type(const World::Impl& w, const char* call, JointId id, JointType type) {
+  const JointSlot& j = w.joints[joint_slot(w, call, id)];
+  if (j.type != type) {
+    validation::reject(call, "joint", type == JointType::Ball ? "a distance joint" : "a ball joint",
+                       "is not of the type asked for");
+  }
+  return j;
+}
+}  // namespace
+
+BallJointDef World::ball_joint(JointId id) const {
+  return joint_ends<BallJointDef>(*impl_, joint_of_type(*impl_, "ball_joint", id, JointType::Ball));
+}
+
+DistanceJointDef World::distance_joint(JointId id) const {
+  const JointSlot& j = joint_of_type(*impl_, "distance_joint", id, JointType::Distance);
+  DistanceJointDef def = joint_ends<DistanceJointDef>(*impl_, j);
+  def.rest_length = j.rest_length;
+  def.min_length = j.min_length;
+  def.max_length = j.max_length;
+  return def;
+}
+
 }  // namespace softstep

@@ -128,6 +128,8 @@ struct World::Impl {
   } thread_policy;
   bool profiling = false;
   StepProfile profile;  // of the last step, while profiling
+  bool capturing = false;
+  SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
 
   void unpack_joints();  // save impulses to slots and mark for re-pack
   // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment
@@ -139,6 +141,10 @@ struct World::Impl {
   void list_bodies();  // (re)sizes the records and the movable list after body changes
   void prepare_bodies(float h, const solver::Share& share);
   void finalize_bodies(const solver::Share& share);
+  // The three moments of a step the solve capture records (serial: thread 0 only).
+  void capture_step_start(float h, double rigid_hertz);
+  void capture_before_solve();  // velocities after gravity and damping, the solver's masses
+  void capture_solved();        // velocities and impulses after the first sub-step's solve
 };
 
 }  // namespace softstep

@@ -40,6 +40,29 @@ struct SolverLayout {
   double lane_fill;  // real joints / lanes in coloured groups
 };
 
+// The first sub-step of the last step as the solver saw it, recorded while
+// World::set_solve_capture is on. It is what the accuracy references (reference.hpp) need to
+// rebuild exactly the soft system that sub-step's Gauss-Seidel solve approximated and to
+// measure how far the solve landed from its exact solution. Body vectors are indexed by body
+// slot (BodyId::index); static bodies and free slots hold zeros.
+struct SolveCapture {
+  double h = 0.0;            // the sub-step, s
+  double rigid_hertz = 0.0;  // frequency rigid rows were solved with: min(rigid_hertz, 1/(4 h))
+  std::vector<Eigen::Vector3d> position;  // at the step start, m
+  std::vector<Quaternion> orientation;    // at the step start
+  // Velocities (linear then angular, world frame) after gravity and damping, before the warm
+  // start, and after the last solve pass of the first sub-step (before positions move).
+  std::vector<Eigen::Matrix<double, 6, 1>> velocity_before_solve;
+  std::vector<Eigen::Matrix<double, 6, 1>> velocity_after_solve;
+  // The masses the solver used (with the geometric-stiffness inertia, if on).
+  std::vector<double> inverse_mass;              // 1/kg
+  std::vector<Eigen::Matrix3d> inverse_inertia;  // world frame, 1/(kg m^2)
+  // Every joint alive during the step and its accumulated impulse after the solve, N s
+  // (ball: world-frame vector; distance: x spring or rod row, y lower and z upper limit).
+  std::vector<JointId> joints;
+  std::vector<Eigen::Vector3d> impulse;
+};
+
 class World {
  public:
   explicit World(const WorldSettings& settings = {});
@@ -76,6 +99,15 @@ class World {
   void step(double dt);
 
   SolverLayout solver_layout() const;
+
+  // While on, every step records its first sub-step in solve_capture() (costs a copy of the
+  // body state and an extra barrier per step; off by default).
+  void set_solve_capture(bool on);
+  const SolveCapture& solve_capture() const;
+
+  // A joint's definition as created (rest_length already clamped into [min, max]).
+  BallJointDef ball_joint(JointId id) const;
+  DistanceJointDef distance_joint(JointId id) const;
 
   // While on, every step records where its time went (last_step_profile()).
   void set_profiling(bool on);

@@ -1,0 +1,355 @@
+// softstep sweep: runs a scene once per setting of a grid of knobs, times it and measures its
+// error against the exact references, then writes results.csv, pareto.svg and summary.md.
+#include "tool/sweep_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "softstep/metrics.hpp"
+#include "softstep/reference.hpp"
+#include "tool/pareto.hpp"
+#include "tool/pareto_chart.hpp"
+#include "tool/progress_bar.hpp"
+#include "tool/report_files.hpp"
+#include "tool/scene_options.hpp"
+
+namespace softstep::tool {
+
+const std::string kSweepUsage =
+    std::string(
+        "usage: softstep sweep [chain|grid|bridge] [scene options] --out DIR [--steps S]\n"
+        "         [--substeps LIST] [--relax LIST] [--iterations LIST] [--warm-start on,off]\n"
+        "         [--simd LIST] [--threads LIST] [--rigid-hertz LIST] [--runs R]\n"
+        "         [--error drift|joint|reference]\n"
+        "         [--reference-substeps N] [--reference-iterations N] [--probes K]\n") +
+    kSceneUsage +
+    "\n  Every combination of the lists (comma-separated; defaults: substeps 1,2,4,8,16, relax\n"
+    "  0,1,2,4, iterations 1, warm start on, simd best, threads 1, rigid hertz 60) runs S\n"
+    "  steps of 1/60 s (default 60) once to measure its errors and R more times (default 3),\n"
+    "  all settings in turn, to time it: ms per step is the median over the R runs of each run's\n"
+    "  median step. The errors:\n"
+    "    joint error     C of every joint after every step (max, and RMS over steps and joints)\n"
+    "    drift           RMS distance of the bodies from the fine-step reference (the same scene\n"
+    "                    at N sub-steps (default 64) and N solve and relax iterations (default\n"
+    "                    4)), the largest over ~20 samples of the run\n"
+    "    reference       at K steps (default 4): distance of the first sub-step's velocities from\n"
+    "                    the exact solution of its soft system (Eigen sparse LDLT), relative, and\n"
+    "                    the RMS row residual J v + bias + Gamma P of the solver's result, m/s\n"
+    "    energy drift    largest |E - E0| / E0, potential energy from the lowest reachable point\n"
+    "  --error picks the error of the chart and of the Pareto front (default drift).\n"
+    "  DIR gets results.csv (one row per setting), pareto.svg and summary.md.";
+
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+struct Setting {
+  int substeps, relax, iterations;
+  bool warm_start;
+  SimdWidth simd;
+  int threads;
+  int rigid_hertz;
+};
+
+std::string label(const Setting& s) {
+  std::string l = std::to_string(s.substeps) + " sub, " + std::to_string(s.relax) + " relax, " +
+                  std::to_string(s.iterations) + " it";
+  if (!s.warm_start) l += ", cold";
+  if (s.rigid_hertz != 60) l += ", " + std::to_string(s.rigid_hertz) + " Hz";
+  return l;
+}
+
+struct Measured {
+  double ms = 0.0;
+  double max_joint_error = 0.0;
+  double rms_joint_error = 0.0;
+  double velocity_residual = 0.0;
+  double energy_drift = 0.0;
+  double reference_distance = 0.0;
+  double drift = 0.0;
+  double stretch = 0.0;
+};
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Potential energy measured from the lowest height any body could reach, so that E0 > 0.
+double energy_offset(const World& world, const SceneRun& run) {
+  double lowest = std::numeric_limits<double>::infinity(), weight = 0.0;
+  const double g = world.settings().gravity.norm();
+  const Eigen::Vector3d down =
+      g > 0.0 ? Eigen::Vector3d(world.settings().gravity / g) : Eigen::Vector3d::Zero();
+  for (BodyId b : run.bodies) {
+    const BodyState s = world.body(b);
+    lowest = std::min(lowest, -down.dot(s.position));
+    weight += s.mass * s.gravity_scale * g;
+  }
+  return -(lowest - run.reach) * weight;
+}
+
+WorldSettings settings_of(const Setting& s) {
+  WorldSettings w;
+  w.substeps = s.substeps;
+  w.relax_iterations = s.relax;
+  w.solve_iterations = s.iterations;
+  w.warm_start = s.warm_start;
+  w.simd = s.simd;
+  w.threads = s.threads;
+  w.rigid_hertz = s.rigid_hertz;
+  return w;
+}
+
+// The larger of two error readings, NaN when either is: a run that blew up must not pass
+// for accurate because std::max drops NaN.
+double worst(double a, double b) {
+  return std::isnan(a) || std::isnan(b) ? kNaN : std::max(a, b);
+}
+
+double elapsed_ms(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+      .count();
+}
+
+}  // namespace
+
+int sweep_command(Arguments& args) {
+  const SceneChoice choice = take_scene_options(args);
+  const std::string out = args.take_string("--out", "");
+  if (out.empty()) throw UsageError("--out DIR is required");
+  const long steps = args.take_int("--steps", 60, 2, 1000000);
+  const std::vector<long> substeps = args.take_int_list("--substeps", "1,2,4,8,16", 1, 1000);
+  const std::vector<long> relax = args.take_int_list("--relax", "0,1,2,4", 0, 1000);
+  const std::vector<long> iterations = args.take_int_list("--iterations", "1", 1, 1000);
+  const std::string warm_text = args.take_string("--warm-start", "on");
+  const std::string simd_text = args.take_string("--simd", "best");
+  const std::vector<long> threads = args.take_int_list("--threads", "1", 0, 256);
+  const std::vector<long> rigid_hertz = args.take_int_list("--rigid-hertz", "60", 1, 1000000);
+  const long runs = args.take_int("--runs", 3, 1, 1000);
+  const std::string error_name =
+      args.take_choice("--error", {"drift", "joint", "reference"}, "drift");
+  const int reference_substeps =
+      static_cast<int>(args.take_int("--reference-substeps", 64, 1, 10000));
+  const int reference_iterations =
+      static_cast<int>(args.take_int("--reference-iterations", 4, 1, 1000));
+  const long probes = args.take_int("--probes", 4, 0, steps);
+  args.reject_leftovers();
+
+  std::vector<bool> warm_choices;
+  for (const std::string& w : {std::string("on"), std::string("off")}) {
+    if (("," + warm_text + ",").find("," + w + ",") != std::string::npos)
+      warm_choices.push_back(w == "on");
+  }
+  if (warm_choices.empty())
+    throw UsageError("--warm-start " + warm_text + ": expected on, off or on,off");
+  std::vector<SimdWidth> simd_choices;
+  for (const char* name : {"best", "scalar", "sse", "avx2"}) {
+    if (("," + simd_text + ",").find("," + std::string(name) + ",") != std::string::npos)
+      simd_choices.push_back(parse_simd(name));
+  }
+  if (simd_choices.empty())
+    throw UsageError("--simd " + simd_text + ": expected best, scalar, sse or avx2");
+
+  std::vector<Setting> grid;
+  for (long s : substeps)
+    for (long r : relax)
+      for (long i : iterations)
+        for (bool w : warm_choices)
+          for (SimdWidth v : simd_choices)
+            for (long t : threads)
+              for (long k : rigid_hertz) {
+                // Rigid rows are solved at min(rigid_hertz, sub-step rate / 4): a value above
+                // the cap runs the same solve as the cap, and is measured once.
+                const double cap = 0.25 * static_cast<double>(s) / kDt;
+                const auto solved_at = [cap](long hz) { return std::min(double(hz), cap); };
+                const auto first_alike =
+                    std::find_if(rigid_hertz.begin(), rigid_hertz.end(),
+                                 [&](long other) { return solved_at(other) == solved_at(k); });
+                if (*first_alike != k) continue;
+                grid.push_back({static_cast<int>(s), static_cast<int>(r), static_cast<int>(i), w, v,
+                                static_cast<int>(t), static_cast<int>(k)});
+              }
+
+  // Steps at which positions are compared with the reference and energy is measured, and
+  // the steps whose first sub-step is checked against the exact solve.
+  const long sample_every = std::max(1L, steps / 20);
+  const auto sampled = [&](long step) { return step % sample_every == 0 || step == steps; };
+  const auto probed = [&](long step) {
+    for (long k = 1; k <= probes; ++k) {
+      if (step == k * steps / probes) return true;
+    }
+    return false;
+  };
+
+  // The fine-step reference trajectory.
+  std::vector<std::vector<Eigen::Vector3d>> reference_positions(
+      static_cast<std::size_t>(steps + 1));
+  {
+    WorldSettings fine;
+    fine.substeps = reference_substeps;
+    fine.solve_iterations = reference_iterations;
+    fine.relax_iterations = reference_iterations;
+    World world(fine);
+    const SceneRun run = build_scene(world, choice);
+    ProgressBar bar("reference", steps);
+    for (long i = 1; i <= steps; ++i) {
+      world.step(kDt);
+      if (sampled(i))
+        reference_positions[static_cast<std::size_t>(i)] = positions(world, run.bodies);
+      bar.update(i);
+    }
+  }
+
+  std::string description;
+  std::size_t body_count = 0, joint_count = 0;
+  std::vector<Measured> results(grid.size());
+  {
+    // Round 0 measures the errors; rounds 1..runs time the steps. A round runs every setting
+    // once, so a burst of load from elsewhere on the machine hits one run of many settings
+    // rather than every run of one.
+    std::vector<std::vector<double>> run_ms(grid.size());
+    const auto settings_count = static_cast<long>(grid.size());
+    ProgressBar bar("sweep", settings_count * (runs + 1));
+    for (long r = 0; r <= runs; ++r) {
+      for (std::size_t g = 0; g < grid.size(); ++g) {
+        const Setting& setting = grid[g];
+        Measured& m = results[g];
+        const bool measuring = r == 0;
+        World world(settings_of(setting));
+        const SceneRun run = build_scene(world, choice);
+        description = run.description;
+        body_count = world.body_count();
+        joint_count = world.joint_count();
+        const double offset = measuring ? energy_offset(world, run) : 0.0;
+        const double e0 =
+            measuring ? metrics::mechanical_energy(world, run.bodies, run.joints) + offset : 0.0;
+        std::vector<double> step_ms;
+        double sum_sq = 0.0;
+        for (long i = 1; i <= steps; ++i) {
+          const bool probe = measuring && probed(i);  // capturing costs a copy: not timed
+          world.set_solve_capture(probe);
+          const auto t0 = std::chrono::steady_clock::now();
+          world.step(kDt);
+          if (!measuring) {
+            step_ms.push_back(elapsed_ms(t0));
+            continue;
+          }
+          const scenes::JointErrors e = scenes::joint_errors(world, run.joints);
+          m.max_joint_error = worst(m.max_joint_error, e.max);
+          sum_sq += e.rms * e.rms;
+          if (sampled(i)) {
+            const double energy =
+                metrics::mechanical_energy(world, run.bodies, run.joints) + offset;
+            m.energy_drift =
+                worst(m.energy_drift, e0 != 0.0 ? std::abs(energy - e0) / std::abs(e0) : kNaN);
+            m.drift = worst(
+                m.drift, metrics::position_drift(world, run.bodies,
+                                                 reference_positions[static_cast<std::size_t>(i)]));
+            m.stretch = worst(m.stretch, run.stretch_ratio());
+          }
+          if (probe) {
+            try {
+              const reference::SoftSystem system = reference::first_substep_system(world);
+              const reference::ExactSolution exact = reference::solve_exact(system);
+              const Eigen::VectorXd residual = reference::row_residual(
+                  system, system.velocity_after_solve, system.impulse_after_solve);
+              m.reference_distance =
+                  worst(m.reference_distance, reference::reference_distance(system, exact));
+              m.velocity_residual = worst(
+                  m.velocity_residual,
+                  residual.size() ? residual.norm() / std::sqrt(double(residual.size())) : 0.0);
+            } catch (const std::exception&) {
+              m.reference_distance = m.velocity_residual = kNaN;
+            }
+          }
+        }
+        if (measuring) {
+          m.rms_joint_error = std::sqrt(sum_sq / static_cast<double>(steps));
+          // A run that blew up has no meaningful error.
+          if (!std::isfinite(m.max_joint_error) || !std::isfinite(m.drift))
+            m.max_joint_error = m.rms_joint_error = m.drift = kNaN;
+        }
+        if (!measuring) run_ms[g].push_back(median(step_ms));
+        bar.update(r * settings_count + static_cast<long>(g) + 1);
+      }
+    }
+    for (std::size_t g = 0; g < grid.size(); ++g) results[g].ms = median(run_ms[g]);
+  }
+
+  const auto error_of = [&](const Measured& m) {
+    return error_name == "drift"   ? m.drift
+           : error_name == "joint" ? m.max_joint_error
+                                   : m.reference_distance;
+  };
+  const char* error_axis =
+      error_name == "drift"
+          ? "drift from the fine-step reference (m, RMS over bodies, worst sample)"
+      : error_name == "joint" ? "max joint error |C| (m, worst step)"
+                              : "distance from the exact sub-step solve (relative)";
+  std::vector<CostPoint> points;
+  std::vector<std::string> labels;
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    points.push_back({results[g].ms, error_of(results[g])});
+    labels.push_back(label(grid[g]));
+  }
+  const std::vector<bool> front = pareto_front(points);
+
+  std::filesystem::create_directories(out);
+  std::string csv =
+      "substeps,relax,iterations,warm_start,simd,threads,rigid_hertz,ms_per_step,max_joint_error_m,"
+      "rms_joint_error_m,velocity_residual,energy_drift,reference_distance,drift_m,stretch,"
+      "pareto\n";
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    const Setting& s = grid[g];
+    const Measured& m = results[g];
+    csv += std::to_string(s.substeps) + "," + std::to_string(s.relax) + "," +
+           std::to_string(s.iterations) + "," + (s.warm_start ? "1" : "0") + "," +
+           simd_width_name(s.simd) + "," + std::to_string(s.threads) + "," +
+           std::to_string(s.rigid_hertz) + "," + format_number(m.ms) + "," +
+           format_number(m.max_joint_error) + "," + format_number(m.rms_joint_error) + "," +
+           format_number(m.velocity_residual) + "," + format_number(m.energy_drift) + "," +
+           format_number(m.reference_distance) + "," + format_number(m.drift) + "," +
+           format_number(m.stretch) + "," + (front[g] ? "1" : "0") + "\n";
+  }
+  write_file(out + "/results.csv", csv);
+  const std::string title = description + ": " + std::to_string(steps) + " steps of 1/60 s";
+  write_file(out + "/pareto.svg",
+             pareto_svg(points, front, labels,
+                        {title, "time per step (ms, median of " + std::to_string(runs) + " runs)",
+                         error_axis}));
+
+  // The front, fastest first, as the budget table.
+  std::vector<std::size_t> order;
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    if (front[g]) order.push_back(g);
+  }
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return points[a].ms < points[b].ms; });
+  char line[512];
+  std::string md = "# softstep sweep: " + title + "\n\n" + std::to_string(body_count) +
+                   " bodies, " + std::to_string(joint_count) + " joints; " +
+                   std::to_string(grid.size()) + " settings; error: " + error_axis + ".\n\n" +
+                   "| time budget (ms per step) | most accurate setting | ms per step | error | "
+                   "max joint error (m) | exact-solve distance | energy drift |\n"
+                   "|---|---|---|---|---|---|---|\n";
+  for (std::size_t g : order) {
+    const Measured& m = results[g];
+    std::snprintf(line, sizeof line, "| >= %.3g | %s | %.3g | %.3g | %.3g | %.3g | %.3g |\n", m.ms,
+                  labels[g].c_str(), m.ms, points[g].error, m.max_joint_error, m.reference_distance,
+                  m.energy_drift);
+    md += line;
+  }
+  md += "\nBelow " +
+        (order.empty() ? std::string("any budget")
+                       : format_number(points[order.front()].ms) + " ms") +
+        " no setting fits. Every setting is in results.csv; pareto.svg draws them.\n";
+  write_file(out + "/summary.md", md);
+  std::fputs(md.c_str(), stdout);
+  return 0;
+}
+
+}  // namespace softstep::tool
