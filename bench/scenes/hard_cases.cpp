@@ -102,7 +102,11 @@ struct HangingChainCase {
   double spacing = 0.25;
   double inertia_scale = 1.0;
   double dt = 1.0 / 60.0;
-  int steps = 600;
+  int steps = 600;  // unless full_period
+  // Run for one period of the chain's slowest swing: a hanging chain of length L (here its
+  // stretched length) swings at omega_1 = (j_0,1 / 2) sqrt(g / L), j_0,1 = 2.405 the first zero
+  // of the Bessel function J0, so T = 5.2255 sqrt(L / g).
+  bool full_period = false;
   int sample_every = 1;
   int substeps = 0;  // 0: keep the settings'
 };
@@ -139,7 +143,13 @@ HardCaseOutcome run_hanging_chain(const HangingChainCase& c, WorldSettings s) {
   }
   Recorder rec(world, scene.links[0], scene.joints, total_mass * kG * length, stiffness);
   HardCaseOutcome out;
-  out.figures = rec.run(c.dt, c.steps, c.sample_every, true);
+  int steps = c.steps;
+  if (c.full_period) {
+    const double stretched_length = length + std::accumulate(stretch.begin(), stretch.end(), 0.0);
+    const double period = 4.0 * kPi / 2.404825557695773 * std::sqrt(stretched_length / kG);
+    steps = static_cast<int>(std::ceil(period / c.dt));
+  }
+  out.figures = rec.run(c.dt, steps, c.sample_every, true);
   const double max_stretch = *std::max_element(stretch.begin(), stretch.end());
   const double total_stretch = std::accumulate(stretch.begin(), stretch.end(), 0.0);
   // The tilted chain also swings down through its length (1 - cos tilt); a prestretched one
@@ -484,27 +494,50 @@ std::vector<HardCase> hard_cases() {
       "tension-induced alignment mode, h * sqrt(T r / I) >> 2: the geometric-stiffness inertia "
       "comes from forces a sub-step or a step old and lags while the tension builds (tiny "
       "inertia: 0.15 m in the first step and ~0.05 m for a second after)";
-  const auto long_chain = [](const Spring& spring) {
+  const auto long_chain = [](const Spring& spring, bool full_period) {
     // Laid out at its equilibrium stretch (a chain that starts unstretched drops like a
-    // bungee through N^2 g / omega^2, kilometres for 10,000 links), tilted 10 degrees, 20 s.
+    // bungee through N^2 g / omega^2, kilometres for 10,000 links), tilted 10 degrees, for
+    // 20 s or a full period of its slowest swing (143 s rigid, 280 s at 30 Hz: the stretch
+    // makes it 7 km and 28 km long).
     return HangingChainCase{.masses = std::vector<double>(10000, 0.1),
                             .prestretched = true,
                             .spring = spring,
                             .tilt = 10.0 * kPi / 180.0,
                             .spacing = 0.05,
                             .steps = 1200,
+                            .full_period = full_period,
                             .sample_every = 20};
   };
   cases.push_back({"long chain, rigid",
                    "10,000 x 0.1 kg links 5 cm apart, hanging at its equilibrium stretch, swinging "
                    "from 10 degrees, 20 s",
                    true, [=](const WorldSettings& s) {
-                     return run_hanging_chain(long_chain(Spring::rigid()), s);
+                     return run_hanging_chain(long_chain(Spring::rigid(), false), s);
                    }});
   cases.push_back({"long chain, soft", "as above, joints 30 Hz, zeta 0.7", true,
                    [=](const WorldSettings& s) {
-                     return run_hanging_chain(long_chain(Spring::soft(30.0, 0.7)), s);
+                     return run_hanging_chain(long_chain(Spring::soft(30.0, 0.7), false), s);
                    }});
+  // Over a full period both leave their bounds; measured, not yet understood (see README).
+  const std::string full_period_failure =
+      "over a full period the fastest link outruns the single-drop speed bound by ~25 % (the "
+      "straight tilted start also excites the chain's faster modes, which whip its free end; "
+      "the bound may be too tight for that), and the rigid chain's kinetic + gravitational "
+      "energy rises 17 %: its rows stretch it 7 km and store energy there that this measure "
+      "does not count, while counting them as 60 Hz springs gives +94 % (relax passes are not "
+      "springs). Needs a proper energy account of a stretched rigid chain";
+  cases.push_back({"long chain, rigid, full period",
+                   "as the rigid long chain, for one period of its slowest swing (143 s)", true,
+                   [=](const WorldSettings& s) {
+                     return run_hanging_chain(long_chain(Spring::rigid(), true), s);
+                   },
+                   full_period_failure});
+  cases.push_back({"long chain, soft, full period",
+                   "as the soft long chain, for one period of its slowest swing (280 s)", true,
+                   [=](const WorldSettings& s) {
+                     return run_hanging_chain(long_chain(Spring::soft(30.0, 0.7), true), s);
+                   },
+                   full_period_failure});
   cases.push_back({"joints created 1 m apart",
                    "10 links, every ball joint's anchors 1 m apart, no gravity, error after 10 s",
                    false, [](const WorldSettings& s) { return run_violated(10, false, s); }});
