@@ -249,7 +249,8 @@ TEST(Validation, StepAndSettingsRejections) {
                   "WorldSettings.solve_iterations", "0");
   expect_rejected(settings([](WorldSettings& s) { s.relax_iterations = -1; }),
                   "WorldSettings.relax_iterations", "-1");
-  expect_rejected(settings([](WorldSettings& s) { s.threads = -1; }), "WorldSettings.threads", "-1");
+  expect_rejected(settings([](WorldSettings& s) { s.threads = -1; }), "WorldSettings.threads",
+                  "-1");
   expect_rejected(settings([](WorldSettings& s) { s.gravity.y() = kNan; }), "WorldSettings.gravity",
                   "nan");
   expect_rejected(settings([](WorldSettings& s) { s.rigid_hertz = 0.0; }),

@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -47,7 +48,9 @@ int step_threads(World::Impl& w) {
   constexpr long kProbeEvery = 64;
   static const int machine_cores = std::max(1, omp_get_num_procs());
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
-  if (allowed <= 1 || w.body_count + w.joint_count < kMinWorkToShare) return 1;
+  // Sleeping bodies and joints are no work.
+  const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3;
+  if (allowed <= 1 || work < kMinWorkToShare) return 1;
   World::Impl::ThreadPolicy& p = w.thread_policy;
   ++p.steps;
   if (p.ms[1] == 0.0) return allowed;  // measure all threads first
@@ -65,11 +68,13 @@ void record_step_time(World::Impl& w, int threads, double ms) {
 }  // namespace
 
 void World::Impl::geometric_inertia(float h) {
-  // Empty means none: a world without joints or with the setting off pays no pass.
-  extra_inertia.clear();
-  if (!settings.geometric_stiffness || last_substep <= 0.0 || !joints_packed || joint_count == 0)
-    return;
-  extra_inertia.assign(bodies.size(), 0.0);
+  // A world without awake joints or with the setting off pays no pass. Only the awake
+  // bodies' entries are cleared and read: a step costs nothing for sleeping ones.
+  extra_inertia_on = false;
+  if (!settings.geometric_stiffness || last_substep <= 0.0 || plan.kernels.empty()) return;
+  extra_inertia_on = true;
+  if (extra_inertia.size() != bodies.size()) extra_inertia.assign(bodies.size(), 0.0);
+  for (std::uint32_t s : solver_bodies.movable) extra_inertia[s] = 0.0;
   // |force| = |impulse of the last sub-step| / that sub-step
   lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / last_substep,
                                             extra_inertia);
@@ -77,15 +82,37 @@ void World::Impl::geometric_inertia(float h) {
 
 void World::Impl::list_bodies() {
   SolverBodies& sb = solver_bodies;
-  const std::size_t records = (bodies.size() + 1 + 7) / 8 * 8;
-  if (bodies_listed && sb.velocity.size() == records) return;
-  sb.velocity.assign(records, simd::VelocityRecord{});
-  sb.delta.assign(records, simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0});
-  sb.mass.assign(records, simd::MassRecord{});
-  sb.force.assign(records, simd::ForceRecord{});
+  constexpr int kBlock = solver::kBodyBlock;
+  const std::size_t records = (bodies.size() + 1 + kBlock - 1) / kBlock * kBlock;
+  sb.velocity.resize(records);
+  sb.delta.resize(records);
+  sb.mass.resize(records);
+  sb.force.resize(records);
   sb.movable.clear();
+  sb.blocks.clear();
   for (std::uint32_t s = 0; s < bodies.size(); ++s) {
-    if (bodies[s].alive && bodies[s].type != BodyType::Static) sb.movable.push_back(s);
+    const BodySlot& b = bodies[s];
+    if (b.alive && b.type != BodyType::Static && !b.asleep) {
+      sb.movable.push_back(s);
+      const std::int32_t block = static_cast<std::int32_t>(s + 1) / kBlock * kBlock;
+      if (sb.blocks.empty() || sb.blocks.back() != block) sb.blocks.push_back(block);
+    } else {
+      // Integrated alongside awake bodies of its block: it must stay exactly where it is.
+      sb.velocity[s + 1] = simd::VelocityRecord{};
+      sb.delta[s + 1] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+      sb.mass[s + 1] = simd::MassRecord{};
+      sb.force[s + 1] = simd::ForceRecord{};
+    }
+  }
+  sb.velocity[0] = simd::VelocityRecord{};
+  sb.delta[0] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+  sb.mass[0] = simd::MassRecord{};
+  sb.force[0] = simd::ForceRecord{};
+  for (std::size_t i = bodies.size() + 1; i < records; ++i) {
+    sb.velocity[i] = simd::VelocityRecord{};
+    sb.delta[i] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+    sb.mass[i] = simd::MassRecord{};
+    sb.force[i] = simd::ForceRecord{};
   }
   bodies_listed = true;
 }
@@ -108,7 +135,7 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
     if (b.type == BodyType::Dynamic) {
       const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
       Eigen::Matrix3d inv_i = r * b.inverse_inertia * r.transpose();
-      if (const double c = extra_inertia.empty() ? 0.0 : extra_inertia[s]; c > 0.0) {
+      if (const double c = extra_inertia_on ? extra_inertia[s] : 0.0; c > 0.0) {
         // inverse(R I R^T + c 1) = R inverse(I + c 1) R^T
         const Eigen::Matrix3d inv_body =
             b.diagonal_inertia
@@ -165,17 +192,18 @@ void World::step(double dt) {
                        "dt / substeps must be a representable sub-step in (0, 1e6] s");
   }
   if (!w.joints_packed || !w.bodies_listed) w.thread_policy = {};  // new content: measure afresh
-  if (!w.joints_packed) {
-    w.lane_solver->pack(w.coloring, w.joints, w.bodies);
-    w.joints_packed = true;
-  }
+  w.build_plan();
   const simd::SubstepContext ctx = make_context(s, h);
-  // Serial: sizing the records, and the geometric inertia (joints add into shared bodies).
-  w.list_bodies();
+  // Serial: the geometric inertia (joints add into shared bodies).
   w.geometric_inertia(h);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
-  const bool has_joints = w.joint_count > 0;
+  // What this step runs: the plan's stages, nothing else.
+  std::array<bool, kPlanStageCount> runs{};
+  for (PlanStage p : w.plan.stages) runs[static_cast<std::size_t>(p)] = true;
+  const auto planned = [&](PlanStage p) { return runs[static_cast<std::size_t>(p)]; };
+  const bool gravity = planned(PlanStage::Gravity);
+  const bool damping = planned(PlanStage::Damping);
 
   // Every thread runs every stage on its share; team_barrier orders the stages.
   const bool profiling = w.profiling;
@@ -198,43 +226,49 @@ void World::step(double dt) {
       work();
       events[static_cast<std::size_t>(share.thread)].push_back({which, begin, since_start()});
     };
-    stage(Stage::Prepare, [&] {
-      w.prepare_bodies(h, share);
-      solver::team_barrier(share);
-      if (has_joints) {
-        solver.prepare(w.joints, w.bodies, ctx, share);
+    if (planned(PlanStage::PrepareBodies) || planned(PlanStage::PrepareJoints)) {
+      stage(Stage::Prepare, [&] {
+        w.prepare_bodies(h, share);
         solver::team_barrier(share);
-      }
-    });
-    for (int sub = 0; sub < s.substeps; ++sub) {
-      stage(Stage::IntegrateVelocities, [&] {
-        solver.integrate_velocities(w.solver_bodies, h, share);
-        solver::team_barrier(share);
+        if (planned(PlanStage::PrepareJoints)) {
+          solver.prepare(w.joints, w.bodies, ctx, share);
+          solver::team_barrier(share);
+        }
       });
-      if (has_joints) {
-        stage(Stage::WarmStart, [&] {
-          if (s.warm_start) {
-            solver.warm_start(arrays, share);
-          } else {
-            solver.clear_impulses(share);
-            solver::team_barrier(share);
-          }
+    }
+    for (int sub = 0; sub < s.substeps; ++sub) {
+      if (planned(PlanStage::SpinLimit)) {
+        stage(Stage::IntegrateVelocities, [&] {
+          solver.integrate_velocities(w.solver_bodies, h, gravity, damping, share);
+          solver::team_barrier(share);
         });
+      }
+      if (planned(PlanStage::WarmStart)) {
+        stage(Stage::WarmStart, [&] { solver.warm_start(arrays, share); });
+      } else if (planned(PlanStage::ClearImpulses)) {
+        stage(Stage::WarmStart, [&] {
+          solver.clear_impulses(share);
+          solver::team_barrier(share);
+        });
+      }
+      if (planned(PlanStage::Solve)) {
         stage(Stage::Solve, [&] {
           for (int i = 0; i < s.solve_iterations; ++i) solver.solve(arrays, ctx, share);
         });
       }
-      stage(Stage::IntegratePositions, [&] {
-        solver.integrate_positions(w.solver_bodies, h, share);
-        solver::team_barrier(share);
-      });
-      if (has_joints && s.relax_iterations > 0) {
+      if (planned(PlanStage::IntegratePositions)) {
+        stage(Stage::IntegratePositions, [&] {
+          solver.integrate_positions(w.solver_bodies, h, share);
+          solver::team_barrier(share);
+        });
+      }
+      if (planned(PlanStage::Relax)) {
         stage(Stage::Relax, [&] {
           for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
         });
       }
     }
-    stage(Stage::Store, [&] { w.finalize_bodies(share); });
+    if (planned(PlanStage::Store)) stage(Stage::Store, [&] { w.finalize_bodies(share); });
   };
   const int threads = step_threads(w);
   if (profiling) {
@@ -267,6 +301,7 @@ void World::step(double dt) {
     for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
   w.last_substep = h;
+  w.update_sleep(dt);
 }
 
 void World::set_profiling(bool on) {
