@@ -19,19 +19,10 @@ WorldSettings resting_settings() {
   return s;
 }
 
-scenes::ChainScene resting_chain(World& world, int links = 10, double z = 0.0) {
+scenes::ChainScene resting_chain(World& world) {
   scenes::ChainOptions o;
-  o.links = links;
-  scenes::ChainScene scene = scenes::build_chain(world, o);
-  if (z != 0.0) {
-    // build_chain lays every chain at z = 0: move this one away (before any step).
-    for (BodyId b : scene.links[0]) {
-      world.set_position(b, world.body(b).position + Eigen::Vector3d(0.0, 0.0, z));
-    }
-    world.set_position(scene.anchors[0],
-                       world.body(scene.anchors[0]).position + Eigen::Vector3d(0.0, 0.0, z));
-  }
-  return scene;
+  o.links = 10;
+  return scenes::build_chain(world, o);
 }
 
 // Steps until the chain sleeps; returns how many steps it took (or -1 after `limit`).
