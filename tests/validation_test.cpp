@@ -220,6 +220,33 @@ TEST(Validation, SetterRejections) {
       },
       "velocity", "static");
   expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {kNan, 0, 0}, {0, 0, 0});
+      },
+      "impulse", "nan");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {0, 0, 0}, {0, kInf, 0});
+      },
+      "world_point", "inf");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {1e18, 0, 0}, {0, 1e18, 0});
+      },
+      "impulse", "beyond");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.ground, {1, 0, 0}, {0, 0, 0});
+      },
+      "body", "static");
+  expect_rejected(
+      [](Fixture& f) {
+        WorldSettings s;
+        s.time_to_sleep = -1.0;
+        f.world.set_settings(s);
+      },
+      "WorldSettings.time_to_sleep", "-1");
+  expect_rejected(
       [](Fixture& f) { f.world.set_mass_properties(f.a, -2.0, Eigen::Matrix3d::Identity()); },
       "mass", "-2");
   expect_rejected(

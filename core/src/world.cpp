@@ -229,12 +229,22 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
   }
   validation::finite("apply_impulse", "impulse", impulse);
   validation::finite("apply_impulse", "world_point", world_point);
-  w.touch(slot);
   BodySlot& b = w.bodies[slot];
   const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
-  b.linear_velocity += impulse / b.mass;
-  b.angular_velocity +=
+  const Eigen::Vector3d v = b.linear_velocity + impulse / b.mass;
+  const Eigen::Vector3d omega =
+      b.angular_velocity +
       r * (b.inverse_inertia * (r.transpose() * (world_point - b.position).cross(impulse)));
+  // The same bounds as a velocity set directly.
+  for (const Eigen::Vector3d& result : {v, omega}) {
+    if (!result.allFinite() || result.cwiseAbs().maxCoeff() > 1e18) {
+      validation::reject("apply_impulse", "impulse", validation::format(impulse),
+                         "gives the body a velocity beyond +-1e18 (m/s or rad/s)");
+    }
+  }
+  w.touch(slot);
+  b.linear_velocity = v;
+  b.angular_velocity = omega;
 }
 
 bool World::is_awake(BodyId id) const {

@@ -152,7 +152,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           break;
         case 6: {
           const BodyId b = pick(in, bodies);
-          switch (in.ConsumeIntegralInRange<int>(0, 4)) {
+          switch (in.ConsumeIntegralInRange<int>(0, 5)) {
             case 0:
               world.set_position(b, vec(in));
               break;
@@ -165,6 +165,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
               break;
             case 3:
               world.set_angular_velocity(b, vec(in));
+              break;
+            case 4:
+              world.apply_impulse(b, vec(in), vec(in));
               break;
             default:
               world.set_mass_properties(b, value(in),
@@ -179,6 +182,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           s.substeps = in.ConsumeIntegralInRange<int>(-1, 6);
           s.relax_iterations = in.ConsumeIntegralInRange<int>(-1, 3);
           s.warm_start = in.ConsumeBool();
+          s.sleeping = in.ConsumeBool();
+          s.specialize = in.ConsumeBool();
+          s.time_to_sleep = value(in);
           s.rigid_hertz = value(in);
           s.simd = static_cast<softstep::SimdWidth>(in.ConsumeIntegralInRange<int>(0, 3));
           world.set_settings(s);
