@@ -191,7 +191,6 @@ void World::step(double dt) {
     validation::reject("step", "dt", validation::format(dt),
                        "dt / substeps must be a representable sub-step in (0, 1e6] s");
   }
-  if (!w.joints_packed || !w.bodies_listed) w.thread_policy = {};  // new content: measure afresh
   w.build_plan();
   const simd::SubstepContext ctx = make_context(s, h);
   // Serial: the geometric inertia (joints add into shared bodies).

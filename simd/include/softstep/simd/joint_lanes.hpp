@@ -152,10 +152,10 @@ SOFTSTEP_INLINE L clamp_lanes(const L& v, const L& bound) {
 // load needs asked for more than max_bias.
 // Springs (bound = +inf) keep their bias untouched, so a spring stays exactly the
 // implicit-Euler spring (adding and removing gamma' P would round).
-// A group known to be all rigid or all springs takes one side without the per-lane test.
+// A group known to be rigid takes the bounded side without the per-lane test (springs do
+// not call it: their bias is never bounded).
 template <class L, RowKind kRow = RowKind::Any>
 SOFTSTEP_INLINE L bounded_bias(const L& bias, const L& feedback_velocity, const L& bound) {
-  static_assert(kRow == RowKind::Any || kRow == RowKind::Rigid);
   if constexpr (kRow == RowKind::Rigid) {
     return clamp_lanes(bias + feedback_velocity, bound) - feedback_velocity;
   } else {
