@@ -16,7 +16,7 @@ struct BridgeOptions {
   double load_mass = 50.0;          // kg
   double load_radius = 0.3;         // m
   double rod_length = 0.5;          // m, from the link's centre to the load's centre
-  double slack_ratio = 0.9;         // piers' distance / the deck's length: the deck hangs slack
+  double slack_ratio = 0.9;  // piers' distance / the deck's length: the deck hangs slack
   Spring spring = Spring::rigid();  // of the span's joints
 };
 
