@@ -220,6 +220,38 @@ TEST(Validation, SetterRejections) {
       },
       "velocity", "static");
   expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {kNan, 0, 0}, {0, 0, 0});
+      },
+      "impulse", "nan");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {0, 0, 0}, {0, kInf, 0});
+      },
+      "world_point", "inf");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {2e4, 0, 0}, {0, 0, 0});  // 1 kg: 2e4 m/s, above 1e4
+      },
+      "impulse", "beyond WorldSettings.max_linear_speed");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.a, {1e3, 0, 0}, {0, 1e8, 0});  // 1e11 rad/s
+      },
+      "impulse", "angular velocity beyond");
+  expect_rejected(
+      [](Fixture& f) {
+        f.world.apply_impulse(f.ground, {1, 0, 0}, {0, 0, 0});
+      },
+      "body", "static");
+  expect_rejected(
+      [](Fixture& f) {
+        WorldSettings s;
+        s.time_to_sleep = -1.0;
+        f.world.set_settings(s);
+      },
+      "WorldSettings.time_to_sleep", "-1");
+  expect_rejected(
       [](Fixture& f) { f.world.set_mass_properties(f.a, -2.0, Eigen::Matrix3d::Identity()); },
       "mass", "-2");
   expect_rejected(

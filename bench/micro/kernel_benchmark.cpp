@@ -93,7 +93,10 @@ const SubstepContext kContext{1.0f / 240.0f, 240.0f, make_softness(60.0f, 2.0f, 
 
 enum class Stage { Prepare, WarmStart, Solve, Relax };
 
-template <class L, template <int> class Group, Stage S>
+// F: the kernel variant. Every lane of these chains is rigid with no limit row, so the
+// general kernel (the default) and the rigid variant compute the same thing: their ratio is
+// what specializing saves.
+template <class L, template <int> class Group, Stage S, JointFeatures F = kGeneralKernel>
 void run(benchmark::State& state) {
   constexpr int W = kWidth<L>;
   auto p =
@@ -111,15 +114,15 @@ void run(benchmark::State& state) {
     for (auto& color : p.colors) {
       for (auto& g : color) {
         if constexpr (std::is_same_v<Group<W>, BallJointGroup<W>>) {
-          if constexpr (S == Stage::Prepare) prepare_ball_joints<L>(g, kContext);
-          if constexpr (S == Stage::WarmStart) warm_start_ball_joints<L>(g, arrays);
-          if constexpr (S == Stage::Solve) solve_ball_joints<L, true>(g, arrays);
-          if constexpr (S == Stage::Relax) solve_ball_joints<L, false>(g, arrays);
+          if constexpr (S == Stage::Prepare) prepare_ball_joints<L, F>(g, kContext);
+          if constexpr (S == Stage::WarmStart) warm_start_ball_joints<L, F>(g, arrays);
+          if constexpr (S == Stage::Solve) solve_ball_joints<L, true, F>(g, arrays);
+          if constexpr (S == Stage::Relax) solve_ball_joints<L, false, F>(g, arrays);
         } else {
-          if constexpr (S == Stage::Prepare) prepare_distance_joints<L>(g, kContext);
-          if constexpr (S == Stage::WarmStart) warm_start_distance_joints<L>(g, arrays);
-          if constexpr (S == Stage::Solve) solve_distance_joints<L, true>(g, arrays, kContext);
-          if constexpr (S == Stage::Relax) solve_distance_joints<L, false>(g, arrays, kContext);
+          if constexpr (S == Stage::Prepare) prepare_distance_joints<L, F>(g, kContext);
+          if constexpr (S == Stage::WarmStart) warm_start_distance_joints<L, F>(g, arrays);
+          if constexpr (S == Stage::Solve) solve_distance_joints<L, true, F>(g, arrays, kContext);
+          if constexpr (S == Stage::Relax) solve_distance_joints<L, false, F>(g, arrays, kContext);
         }
       }
     }
@@ -151,6 +154,20 @@ SOFTSTEP_KERNEL_BENCH(BallJointGroup, Relax);
 SOFTSTEP_KERNEL_BENCH(DistanceJointGroup, Prepare);
 SOFTSTEP_KERNEL_BENCH(DistanceJointGroup, Solve);
 SOFTSTEP_KERNEL_BENCH(DistanceJointGroup, Relax);
+
+// The rigid variant of the same kernels (no per-lane spring switch, no limit rows).
+constexpr JointFeatures kRigid{RowKind::Rigid, false, false};
+#define SOFTSTEP_RIGID_BENCH(GROUP, STAGE)           \
+  BENCHMARK(run<float, GROUP, Stage::STAGE, kRigid>) \
+      ->Name(#GROUP "/" #STAGE "/scalar/rigid")      \
+      ->Apply(scenes);                               \
+  BENCHMARK(run<Avx2, GROUP, Stage::STAGE, kRigid>)  \
+      ->Name(#GROUP "/" #STAGE "/avx2/rigid")        \
+      ->Apply(scenes)
+SOFTSTEP_RIGID_BENCH(BallJointGroup, Solve);
+SOFTSTEP_RIGID_BENCH(BallJointGroup, Relax);
+SOFTSTEP_RIGID_BENCH(DistanceJointGroup, Solve);
+SOFTSTEP_RIGID_BENCH(DistanceJointGroup, Relax);
 
 }  // namespace
 }  // namespace softstep::simd

@@ -51,6 +51,8 @@ ChainScene build_chain(World& world, const ChainOptions& o) {
         j.body_a = previous;
         j.body_b = body;
         j.rest_length = o.link_spacing;
+        j.min_length = o.min_length;
+        j.max_length = o.max_length;
         j.spring = o.spring;
         scene.joints.push_back(world.create_distance_joint(j));
       }

@@ -3,6 +3,7 @@
 // benchmarks and the tests, so all three measure the same scene.
 #pragma once
 
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -32,6 +33,9 @@ struct ChainOptions {
   // Extra distance between the anchors of each joint at creation, m, first joint first (a
   // chain laid out already stretched to its equilibrium); empty: none.
   std::vector<double> joint_gaps;
+  // Distance joints' limits, m (a rope: Spring::free() and max_length = link_spacing).
+  double min_length = 0.0;
+  double max_length = std::numeric_limits<double>::infinity();
   double link_radius = 0.1;    // m
   double link_spacing = 0.25;  // m, centre to centre
   double chain_spacing = 1.0;  // m, between parallel chains (along z)

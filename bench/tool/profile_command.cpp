@@ -19,13 +19,92 @@ const std::string kProfileUsage =
         "usage: softstep profile [chain|grid|bridge] [scene options] [--steps S]\n"
         "                        [--substeps N] [--iterations N] [--relax N] [--threads T] [--simd "
         "scalar|sse|avx2]\n"
-        "                        [--no-warm-start] [--json FILE] [--csv FILE] [--trace FILE]\n") +
+        "                        [--no-warm-start] [--no-sleep] [--general] [--plan]\n"
+        "                        [--json FILE] [--csv FILE] [--trace FILE]\n") +
     kSceneUsage +
     "\n  Stepped S times at 60 Hz (default 300).\n"
-    "  --json FILE   the figures as one JSON object; --csv FILE   one row per step;\n"
+    "  --plan        print the step plan of the last step: effects, stages, kernel variants;\n"
+    "  --general     every joint on the general kernel and every stage run (the baseline);\n"
+    "  --no-sleep    islands at rest stay awake;\n"
+    "  --json FILE   the figures as one JSON object (with the plan); --csv FILE   one row per "
+    "step;\n"
     "  --trace FILE  Chrome / Perfetto trace events: one slice per stage per thread.";
 
 namespace {
+
+const char* joint_type_name(JointType type) {
+  return type == JointType::Ball ? "ball" : "distance";
+}
+
+// "rigid", "soft + min + max", "any (general)", ...
+std::string kernel_features(const PlanKernel& k) {
+  if (k.row == SpringRow::Any) return "general (per-lane switches)";
+  std::string text = spring_row_name(k.row);
+  if (k.lower_limit) text += " + min";
+  if (k.upper_limit) text += " + max";
+  return text;
+}
+
+void print_plan(const StepPlan& plan) {
+  std::printf("plan             %s, built %llu time(s)\n",
+              plan.specialized ? "specialized" : "general (--general)",
+              static_cast<unsigned long long>(plan.builds));
+  std::string effects;
+  const auto effect = [&](bool on, const char* name) {
+    if (on) effects += (effects.empty() ? "" : ", ") + std::string(name);
+  };
+  effect(plan.gravity, "gravity");
+  effect(plan.damping, "damping");
+  effect(plan.springs, "springs");
+  effect(plan.limits, "limits");
+  effect(plan.warm_start, "warm start");
+  effect(plan.kinematic_bodies, "kinematic bodies");
+  effect(plan.unconstrained_bodies, "bodies without joints");
+  std::printf("  effects        %s\n", effects.empty() ? "none" : effects.c_str());
+  std::string stages;
+  for (PlanStage st : plan.stages)
+    stages += (stages.empty() ? "" : " ") + std::string(plan_stage_name(st));
+  std::printf("  stages         %s\n", stages.empty() ? "none" : stages.c_str());
+  std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
+              plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
+  std::printf("  kernel variants (type, features: batches, joints)\n");
+  for (const PlanKernel& k : plan.kernels) {
+    std::printf("    %-9s %-28s %8u batches %9u joints\n", joint_type_name(k.type),
+                kernel_features(k).c_str(), k.batches, k.joints);
+  }
+}
+
+JsonObject plan_json(const StepPlan& plan) {
+  JsonObject j;
+  j.add("specialized", plan.specialized ? 1 : 0);
+  std::vector<std::string> stages;
+  for (PlanStage st : plan.stages) stages.emplace_back(plan_stage_name(st));
+  j.add_strings("stages", stages);
+  JsonObject effects;
+  effects.add("gravity", plan.gravity);
+  effects.add("damping", plan.damping);
+  effects.add("springs", plan.springs);
+  effects.add("limits", plan.limits);
+  effects.add("warm_start", plan.warm_start);
+  effects.add("kinematic_bodies", plan.kinematic_bodies);
+  effects.add("unconstrained_bodies", plan.unconstrained_bodies);
+  j.add_object("effects", effects);
+  std::vector<JsonObject> kernels;
+  for (const PlanKernel& k : plan.kernels) {
+    JsonObject o;
+    o.add_string("type", joint_type_name(k.type));
+    o.add_string("spring_row", spring_row_name(k.row));
+    o.add("lower_limit", k.lower_limit);
+    o.add("upper_limit", k.upper_limit);
+    o.add("rows_per_joint", k.rows_per_joint);
+    o.add("batches", k.batches);
+    o.add("joints", k.joints);
+    kernels.push_back(o);
+  }
+  j.add_objects("kernels", kernels);
+  j.add("rows_per_pass", static_cast<double>(plan.rows_per_pass));
+  return j;
+}
 
 struct CsvRow {
   double ms;
@@ -44,6 +123,9 @@ int profile_command(Arguments& args) {
   settings.threads = static_cast<int>(args.take_int("--threads", 0, 0, 256));  // 0: all cores
   settings.simd = parse_simd(args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best"));
   settings.warm_start = !args.take_switch("--no-warm-start");
+  settings.sleeping = !args.take_switch("--no-sleep");
+  settings.specialize = !args.take_switch("--general");
+  const bool show_plan = args.take_switch("--plan");
   const std::string json_path = args.take_string("--json", "");
   const std::string csv_path = args.take_string("--csv", "");
   const std::string trace_path = args.take_string("--trace", "");
@@ -112,6 +194,12 @@ int profile_command(Arguments& args) {
     per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
   std::printf("colors           %d used (joints per color: %s), overflow %u, lane fill %.3f\n",
               layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
+  std::printf("awake bodies     %zu, sleeping islands %zu\n", world.step_plan().awake_bodies,
+              world.step_plan().sleeping_islands);
+  if (show_plan) {
+    std::printf("\n");
+    print_plan(world.step_plan());
+  }
   std::printf("\n  stage                  ms/step   share\n");
   for (int k = 0; k < kStageCount; ++k) {
     const double v = stage_median[static_cast<std::size_t>(k)];
@@ -156,6 +244,9 @@ int profile_command(Arguments& args) {
     j.add("rms_joint_error_m", errors.rms);
     j.add("max_joint_error_run_m", worst_error_run);
     j.add("stretch_ratio", stretch);
+    j.add_object("plan", plan_json(world.step_plan()));
+    j.add("awake_bodies", static_cast<double>(world.step_plan().awake_bodies));
+    j.add("sleeping_islands", static_cast<double>(world.step_plan().sleeping_islands));
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx",
                   static_cast<unsigned long long>(world.state_hash()));

@@ -38,6 +38,18 @@ void JsonObject::add_object(const std::string& key, const JsonObject& value) {
   members_.push_back(quoted(key) + ": " + value.text());
 }
 
+void JsonObject::add_strings(const std::string& key, const std::vector<std::string>& values) {
+  std::string list;
+  for (const std::string& v : values) list += (list.empty() ? "" : ", ") + quoted(v);
+  members_.push_back(quoted(key) + ": [" + list + "]");
+}
+
+void JsonObject::add_objects(const std::string& key, const std::vector<JsonObject>& values) {
+  std::string list;
+  for (const JsonObject& v : values) list += (list.empty() ? "" : ", ") + v.text();
+  members_.push_back(quoted(key) + ": [" + list + "]");
+}
+
 std::string JsonObject::text() const {
   std::string out = "{";
   for (std::size_t i = 0; i < members_.size(); ++i) out += (i ? ", " : "") + members_[i];

@@ -19,6 +19,8 @@ class JsonObject {
   void add(const std::string& key, double value);
   void add_string(const std::string& key, const std::string& value);
   void add_object(const std::string& key, const JsonObject& value);
+  void add_strings(const std::string& key, const std::vector<std::string>& values);
+  void add_objects(const std::string& key, const std::vector<JsonObject>& values);
   std::string text() const;
 
  private:

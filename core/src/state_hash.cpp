@@ -49,8 +49,12 @@ std::uint64_t World::state_hash() const {
   h.value(s.rigid_damping_ratio);
   h.value(s.max_correction_speed);
   h.value(s.geometric_stiffness);
-  // Not hashed: simd and threads, which by design never change a result, so that runs at
-  // different widths and thread counts can be compared by hash.
+  h.value(s.sleeping);
+  h.value(s.sleep_linear_speed);
+  h.value(s.sleep_angular_speed);
+  h.value(s.time_to_sleep);
+  // Not hashed: simd, threads and specialize, which by design never change a result, so that runs
+  // at different widths and thread counts can be compared by hash.
   h.value(w.bodies.size());
   for (const BodySlot& b : w.bodies) {
     h.value(b.generation);
@@ -67,6 +71,9 @@ std::uint64_t World::state_hash() const {
     h.value(b.linear_damping);
     h.value(b.angular_damping);
     for (std::uint32_t j : b.joints) h.value(j);
+    h.value(b.never_sleep);
+    h.value(b.asleep);
+    h.value(b.sleep_time);
   }
   h.value(w.joints.size());
   for (std::uint32_t slot = 0; slot < w.joints.size(); ++slot) {
@@ -84,7 +91,8 @@ std::uint64_t World::state_hash() const {
     h.value(j.rest_length);
     h.value(j.min_length);
     h.value(j.max_length);
-    h.matrix(w.joints_packed ? w.lane_solver->impulse(slot) : j.impulse);
+    h.matrix(w.joints_packed && w.lane_solver->in_lanes(slot) ? w.lane_solver->impulse(slot)
+                                                              : j.impulse);
   }
   for (std::uint32_t f : w.free_bodies) h.value(f);
   for (std::uint32_t f : w.free_joints) h.value(f);

@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -52,7 +53,9 @@ int step_threads(World::Impl& w) {
   constexpr long kProbeEvery = 64;
   static const int machine_cores = std::max(1, omp_get_num_procs());
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
-  if (allowed <= 1 || w.body_count + w.joint_count < kMinWorkToShare) return 1;
+  // Sleeping bodies and joints are no work.
+  const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3;
+  if (allowed <= 1 || work < kMinWorkToShare) return 1;
   World::Impl::ThreadPolicy& p = w.thread_policy;
   ++p.steps;
   if (p.ms[1] == 0.0) return allowed;  // measure all threads first
@@ -70,12 +73,13 @@ void record_step_time(World::Impl& w, int threads, double ms) {
 }  // namespace
 
 void World::Impl::geometric_inertia(float h, double impulse_substep) {
-  // Empty means none: a world without joints or with the setting off pays no pass.
-  extra_inertia.clear();
-  if (!settings.geometric_stiffness || impulse_substep <= 0.0 || !joints_packed ||
-      joint_count == 0)
-    return;
-  extra_inertia.assign(bodies.size(), 0.0);
+  // A world without awake joints or with the setting off pays no pass. Only the awake
+  // bodies' entries are cleared and read: a step costs nothing for sleeping ones.
+  extra_inertia_on = false;
+  if (!settings.geometric_stiffness || impulse_substep <= 0.0 || plan.kernels.empty()) return;
+  extra_inertia_on = true;
+  if (extra_inertia.size() != bodies.size()) extra_inertia.assign(bodies.size(), 0.0);
+  for (std::uint32_t s : solver_bodies.movable) extra_inertia[s] = 0.0;
   // |force| = |impulse of a sub-step| / that sub-step
   lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / impulse_substep,
                                             extra_inertia);
@@ -83,15 +87,37 @@ void World::Impl::geometric_inertia(float h, double impulse_substep) {
 
 void World::Impl::list_bodies() {
   SolverBodies& sb = solver_bodies;
-  const std::size_t records = (bodies.size() + 1 + 7) / 8 * 8;
-  if (bodies_listed && sb.velocity.size() == records) return;
-  sb.velocity.assign(records, simd::VelocityRecord{});
-  sb.delta.assign(records, simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0});
-  sb.mass.assign(records, simd::MassRecord{});
-  sb.force.assign(records, simd::ForceRecord{});
+  constexpr int kBlock = solver::kBodyBlock;
+  const std::size_t records = (bodies.size() + 1 + kBlock - 1) / kBlock * kBlock;
+  sb.velocity.resize(records);
+  sb.delta.resize(records);
+  sb.mass.resize(records);
+  sb.force.resize(records);
   sb.movable.clear();
+  sb.blocks.clear();
   for (std::uint32_t s = 0; s < bodies.size(); ++s) {
-    if (bodies[s].alive && bodies[s].type != BodyType::Static) sb.movable.push_back(s);
+    const BodySlot& b = bodies[s];
+    if (b.alive && b.type != BodyType::Static && !b.asleep) {
+      sb.movable.push_back(s);
+      const std::int32_t block = static_cast<std::int32_t>(s + 1) / kBlock * kBlock;
+      if (sb.blocks.empty() || sb.blocks.back() != block) sb.blocks.push_back(block);
+    } else {
+      // Integrated alongside awake bodies of its block: it must stay exactly where it is.
+      sb.velocity[s + 1] = simd::VelocityRecord{};
+      sb.delta[s + 1] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+      sb.mass[s + 1] = simd::MassRecord{};
+      sb.force[s + 1] = simd::ForceRecord{};
+    }
+  }
+  sb.velocity[0] = simd::VelocityRecord{};
+  sb.delta[0] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+  sb.mass[0] = simd::MassRecord{};
+  sb.force[0] = simd::ForceRecord{};
+  for (std::size_t i = bodies.size() + 1; i < records; ++i) {
+    sb.velocity[i] = simd::VelocityRecord{};
+    sb.delta[i] = simd::DeltaRecord{{0, 0, 0}, {0, 0, 0, 1}, 0};
+    sb.mass[i] = simd::MassRecord{};
+    sb.force[i] = simd::ForceRecord{};
   }
   bodies_listed = true;
 }
@@ -127,7 +153,7 @@ void World::Impl::refresh_inertia(const solver::Share& share) {
   for (std::size_t index = mine.begin; index < mine.end; ++index) {
     const std::uint32_t s = sb.movable[index];
     if (bodies[s].type != BodyType::Dynamic) continue;
-    sb.mass[s + 1] = mass_record(bodies[s], extra_inertia.empty() ? 0.0 : extra_inertia[s]);
+    sb.mass[s + 1] = mass_record(bodies[s], extra_inertia_on ? extra_inertia[s] : 0.0);
   }
 }
 
@@ -147,7 +173,7 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
     simd::MassRecord& m = sb.mass[i];
     simd::ForceRecord& f = sb.force[i];
     if (b.type == BodyType::Dynamic) {
-      m = mass_record(b, extra_inertia.empty() ? 0.0 : extra_inertia[s]);
+      m = mass_record(b, extra_inertia_on ? extra_inertia[s] : 0.0);
       const Eigen::Vector3d g = settings.gravity * b.gravity_scale;
       f = {{static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())},
            static_cast<float>(1.0 / (1.0 + h * b.linear_damping)),
@@ -193,25 +219,25 @@ void World::step(double dt) {
                            validation::format(validation::kMaxSubstep) + "] s");
   }
   const float h = static_cast<float>(substep);
-  if (!w.joints_packed || !w.bodies_listed) w.thread_policy = {};  // new content: measure afresh
-  if (!w.joints_packed) {
-    w.lane_solver->pack(w.coloring, w.joints, w.bodies);
-    w.joints_packed = true;
-  }
+  w.build_plan();
   const simd::SubstepContext ctx = make_context(s, h);
-  // Serial: sizing the records, and the geometric inertia (joints add into shared bodies).
-  w.list_bodies();
+  // Serial: the geometric inertia (joints add into shared bodies).
   w.geometric_inertia(h, w.last_substep);
   // New joints have no force yet, so their bodies got no geometric inertia from them: a link of
   // tiny inertia then spins through the whole first step (0.5 m joint error in the "tiny
   // inertia" hard case). The first sub-step's impulses are a force; the inertia is recomputed
   // from them before the second sub-step (0.15 m). Probing the first sub-step and restarting
   // it with that inertia was tried, and did worse (0.35 m).
-  const bool refresh_inertia =
-      w.joints_without_history && s.geometric_stiffness && s.substeps > 1 && w.joint_count > 0;
+  const bool refresh_inertia = w.joints_without_history && s.geometric_stiffness &&
+                               s.substeps > 1 && !w.plan.kernels.empty();
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
-  const bool has_joints = w.joint_count > 0;
+  // What this step runs: the plan's stages, nothing else.
+  std::array<bool, kPlanStageCount> runs{};
+  for (PlanStage p : w.plan.stages) runs[static_cast<std::size_t>(p)] = true;
+  const auto planned = [&](PlanStage p) { return runs[static_cast<std::size_t>(p)]; };
+  const bool gravity = planned(PlanStage::Gravity);
+  const bool damping = planned(PlanStage::Damping);
   const bool capturing = w.capturing;
   if (capturing) w.capture_step_start(h, rigid_solve_hertz(s, h));
 
@@ -236,37 +262,41 @@ void World::step(double dt) {
       work();
       events[static_cast<std::size_t>(share.thread)].push_back({which, begin, since_start()});
     };
-    stage(Stage::Prepare, [&] {
-      w.prepare_bodies(h, share);
-      solver::team_barrier(share);
-      if (has_joints) {
-        solver.prepare(w.joints, w.bodies, ctx, share);
+    if (planned(PlanStage::PrepareBodies) || planned(PlanStage::PrepareJoints)) {
+      stage(Stage::Prepare, [&] {
+        w.prepare_bodies(h, share);
         solver::team_barrier(share);
-      }
-    });
-    for (int sub = 0; sub < s.substeps; ++sub) {
-      stage(Stage::IntegrateVelocities, [&] {
-        if (sub == 1 && refresh_inertia) {
-          if (share.thread == 0) w.geometric_inertia(h, h);
+        if (planned(PlanStage::PrepareJoints)) {
+          solver.prepare(w.joints, w.bodies, ctx, share);
           solver::team_barrier(share);
-          w.refresh_inertia(share);  // integrate_velocities reads no mass record
         }
-        solver.integrate_velocities(w.solver_bodies, ctx, share);
-        solver::team_barrier(share);
       });
+    }
+    for (int sub = 0; sub < s.substeps; ++sub) {
+      if (planned(PlanStage::SpinLimit)) {
+        stage(Stage::IntegrateVelocities, [&] {
+          if (sub == 1 && refresh_inertia) {
+            if (share.thread == 0) w.geometric_inertia(h, h);
+            solver::team_barrier(share);
+            w.refresh_inertia(share);  // integrate_velocities reads no mass record
+          }
+          solver.integrate_velocities(w.solver_bodies, ctx, gravity, damping, share);
+          solver::team_barrier(share);
+        });
+      }
       if (capturing && sub == 0) {
         if (share.thread == 0) w.capture_before_solve();
         solver::team_barrier(share);  // the warm start writes the velocities just copied
       }
-      if (has_joints) {
+      if (planned(PlanStage::WarmStart)) {
+        stage(Stage::WarmStart, [&] { solver.warm_start(arrays, share); });
+      } else if (planned(PlanStage::ClearImpulses)) {
         stage(Stage::WarmStart, [&] {
-          if (s.warm_start) {
-            solver.warm_start(arrays, share);
-          } else {
-            solver.clear_impulses(share);
-            solver::team_barrier(share);
-          }
+          solver.clear_impulses(share);
+          solver::team_barrier(share);
         });
+      }
+      if (planned(PlanStage::Solve)) {
         stage(Stage::Solve, [&] {
           for (int i = 0; i < s.solve_iterations; ++i) solver.solve(arrays, ctx, share);
         });
@@ -274,17 +304,19 @@ void World::step(double dt) {
       // The solve ended at a barrier, and until the next barrier no thread writes velocities
       // or impulses (positions move): thread 0 may read them.
       if (capturing && sub == 0 && share.thread == 0) w.capture_solved();
-      stage(Stage::IntegratePositions, [&] {
-        solver.integrate_positions(w.solver_bodies, h, share);
-        solver::team_barrier(share);
-      });
-      if (has_joints && s.relax_iterations > 0) {
+      if (planned(PlanStage::IntegratePositions)) {
+        stage(Stage::IntegratePositions, [&] {
+          solver.integrate_positions(w.solver_bodies, h, share);
+          solver::team_barrier(share);
+        });
+      }
+      if (planned(PlanStage::Relax)) {
         stage(Stage::Relax, [&] {
           for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
         });
       }
     }
-    stage(Stage::Store, [&] { w.finalize_bodies(share); });
+    if (planned(PlanStage::Store)) stage(Stage::Store, [&] { w.finalize_bodies(share); });
   };
   const int threads = step_threads(w);
   if (profiling) {
@@ -318,6 +350,7 @@ void World::step(double dt) {
   }
   w.last_substep = h;
   w.joints_without_history = false;
+  w.update_sleep(dt);
 }
 
 void World::set_profiling(bool on) {

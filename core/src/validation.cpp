@@ -170,6 +170,9 @@ void settings(std::string_view call, const WorldSettings& s) {
   }
   non_negative(call, "WorldSettings.rigid_damping_ratio", s.rigid_damping_ratio);
   positive(call, "WorldSettings.max_correction_speed", s.max_correction_speed);
+  non_negative(call, "WorldSettings.sleep_linear_speed", s.sleep_linear_speed);
+  non_negative(call, "WorldSettings.sleep_angular_speed", s.sleep_angular_speed);
+  non_negative(call, "WorldSettings.time_to_sleep", s.time_to_sleep);
 }
 
 }  // namespace softstep::validation

@@ -71,6 +71,12 @@ static std::uint32_t take_slot(std::vector<Slot>& slots, std::vector<std::uint32
 void World::Impl::unpack_joints() {
   if (joints_packed && lane_solver) lane_solver->save_impulses(joints);
   joints_packed = false;
+  plan_built = false;
+}
+
+void World::Impl::content_changed() {
+  bodies_listed = false;
+  plan_built = false;
 }
 
 // ---- construction and settings ------------------------------------------------------------
@@ -104,12 +110,14 @@ void World::set_settings(const WorldSettings& settings) {
                              validation::format(b.linear_velocity.norm()) + " m/s; slow it first");
     }
   }
+  if (width != w.width || settings.specialize != w.settings.specialize) w.unpack_joints();
   if (width != w.width) {
-    w.unpack_joints();
     w.lane_solver = make_lane_solver(width);
     w.width = width;
   }
   w.settings = settings;
+  if (!settings.sleeping) w.wake_all();
+  w.content_changed();
 }
 
 // ---- bodies -------------------------------------------------------------------------------
@@ -134,14 +142,18 @@ BodyId World::create_body(const BodyDef& def) {
   b.linear_damping = def.linear_damping;
   b.angular_damping = def.angular_damping;
   b.joints.clear();
+  b.never_sleep = def.never_sleep;
+  b.asleep = false;
+  b.sleep_time = 0.0;
   ++w.body_count;
-  w.bodies_listed = false;
+  w.content_changed();
   return {slot, b.generation};
 }
 
 void World::destroy_body(BodyId id) {
   Impl& w = *impl_;
   const std::uint32_t slot = body_slot(w, "destroy_body", "body", id);
+  w.touch(slot);  // the rest of its island may have leant on it
   const std::vector<std::uint32_t> attached = w.bodies[slot].joints;
   for (std::uint32_t j : attached) destroy_joint({j, w.joints[j].generation});
   BodySlot& b = w.bodies[slot];
@@ -150,7 +162,7 @@ void World::destroy_body(BodyId id) {
   b.joints.clear();
   w.free_bodies.push_back(slot);
   --w.body_count;
-  w.bodies_listed = false;
+  w.content_changed();
 }
 
 bool World::is_valid(BodyId id) const {
@@ -168,12 +180,14 @@ BodyState World::body(BodyId id) const {
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {
   const std::uint32_t slot = body_slot(*impl_, "set_position", "body", id);
   validation::finite("set_position", "position", position);
+  impl_->touch(slot);
   impl_->bodies[slot].position = position;
 }
 
 void World::set_orientation(BodyId id, const Quaternion& orientation) {
   const std::uint32_t slot = body_slot(*impl_, "set_orientation", "body", id);
   const Quaternion q = validation::unit_quaternion("set_orientation", "orientation", orientation);
+  impl_->touch(slot);
   impl_->bodies[slot].orientation = q;
 }
 
@@ -189,6 +203,7 @@ void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen:
     validation::reject(call, "velocity", validation::format(velocity),
                        "a static body cannot move (use a kinematic body)");
   }
+  w.touch(slot);
   w.bodies[slot].*member = velocity;
 }
 }  // namespace
@@ -210,10 +225,49 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
   }
   validation::dynamic_mass("set_mass_properties", "mass", mass);
   validation::inertia_tensor("set_mass_properties", "inertia", inertia);
+  impl_->touch(slot);
   b.mass = mass;
   b.inertia = inertia;
   b.inverse_inertia = inertia.inverse();
   b.diagonal_inertia = inertia.isDiagonal(0.0);
+}
+
+void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
+                          const Eigen::Vector3d& world_point) {
+  Impl& w = *impl_;
+  const std::uint32_t slot = body_slot(w, "apply_impulse", "body", id);
+  if (w.bodies[slot].type != BodyType::Dynamic) {
+    validation::reject("apply_impulse", "body", type_name(w.bodies[slot].type),
+                       "only a dynamic body responds to an impulse");
+  }
+  validation::finite("apply_impulse", "impulse", impulse);
+  validation::finite("apply_impulse", "world_point", world_point);
+  BodySlot& b = w.bodies[slot];
+  const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
+  const Eigen::Vector3d v = b.linear_velocity + impulse / b.mass;
+  const Eigen::Vector3d omega =
+      b.angular_velocity +
+      r * (b.inverse_inertia * (r.transpose() * (world_point - b.position).cross(impulse)));
+  // The same bounds as a velocity set directly.
+  if (!omega.allFinite() || omega.cwiseAbs().maxCoeff() > validation::kMaxMagnitude) {
+    validation::reject("apply_impulse", "impulse", validation::format(impulse),
+                       "gives the body an angular velocity beyond +-" +
+                           validation::format(validation::kMaxMagnitude) + " rad/s");
+  }
+  if (!(v.norm() <= w.settings.max_linear_speed)) {
+    validation::reject("apply_impulse", "impulse", validation::format(impulse),
+                       "gives the body a speed of " + validation::format(v.norm()) +
+                           " m/s, beyond WorldSettings.max_linear_speed (" +
+                           validation::format(w.settings.max_linear_speed) + " m/s)");
+  }
+  w.touch(slot);
+  b.linear_velocity = v;
+  b.angular_velocity = omega;
+}
+
+bool World::is_awake(BodyId id) const {
+  const BodySlot& b = impl_->bodies[body_slot(*impl_, "is_awake", "body", id)];
+  return b.type != BodyType::Static && !b.asleep;
 }
 
 std::size_t World::body_count() const {
@@ -254,6 +308,9 @@ JointEnds check_joint_ends(const World::Impl& w, std::string_view call, BodyId a
 
 static JointId add_joint(World::Impl& w, JointSlot&& joint) {
   const std::uint32_t slot = take_slot(w.joints, w.free_joints);
+  // A joint to a sleeping island wakes it (one end may be awake and moving).
+  w.touch(joint.body_a);
+  w.touch(joint.body_b);
   w.unpack_joints();
   joint.generation = w.joints[slot].generation;
   joint.alive = true;
@@ -318,8 +375,10 @@ JointId World::create_distance_joint(const DistanceJointDef& def) {
 void World::destroy_joint(JointId id) {
   Impl& w = *impl_;
   const std::uint32_t slot = joint_slot(w, "destroy_joint", id);
-  w.unpack_joints();
   JointSlot& j = w.joints[slot];
+  w.touch(j.body_a);
+  w.touch(j.body_b);
+  w.unpack_joints();
   for (std::uint32_t body : {j.body_a, j.body_b}) {
     auto& list = w.bodies[body].joints;
     list.erase(std::find(list.begin(), list.end(), slot));
@@ -354,7 +413,9 @@ JointReading World::joint_reading(JointId id) const {
   const Eigen::Vector3d anchor_a = a.position + a.orientation * j.local_anchor_a;
   const Eigen::Vector3d anchor_b = b.position + b.orientation * j.local_anchor_b;
   const Eigen::Vector3d d = anchor_b - anchor_a;
-  const Eigen::Vector3f stored = w.joints_packed ? w.lane_solver->impulse(id.index) : j.impulse;
+  const Eigen::Vector3f stored = w.joints_packed && w.lane_solver->in_lanes(id.index)
+                                     ? w.lane_solver->impulse(id.index)
+                                     : j.impulse;
   JointReading r;
   if (j.type == JointType::Ball) {
     r.impulse = stored.cast<double>();

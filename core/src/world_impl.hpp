@@ -8,6 +8,7 @@
 #include "softstep/graph_coloring/graph_coloring.hpp"
 #include "softstep/simd/body_integration.hpp"
 #include "softstep/simd/step_context.hpp"
+#include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"
 #include "solver/joint_batches.hpp"
 
@@ -29,6 +30,10 @@ struct BodySlot {
   double linear_damping = 0.0;
   double angular_damping = 0.0;
   std::vector<std::uint32_t> joints;  // slots of the joints attached to this body
+  bool never_sleep = false;
+  bool asleep = false;
+  double sleep_time = 0.0;   // s the body has stayed below the sleep speeds
+  std::uint32_t island = 0;  // while asleep: index into World::Impl::islands
 };
 
 struct JointSlot {
@@ -58,24 +63,42 @@ struct SolverBodies {
   std::vector<simd::DeltaRecord> delta;
   std::vector<simd::MassRecord> mass;
   std::vector<simd::ForceRecord> force;
-  std::vector<std::uint32_t> movable;  // slots of dynamic and kinematic bodies, in slot order
-  // Records in use, rounded up to a multiple of the widest lane group (8): integration runs
-  // over all of them in whole groups.
-  std::int32_t padded_count() const { return static_cast<std::int32_t>(velocity.size()); }
+  // Slots of the awake dynamic and kinematic bodies, in slot order.
+  std::vector<std::uint32_t> movable;
+  // First records of the blocks of 8 that hold an awake movable body: integration runs over
+  // them only (the other records in such a block are static, free or asleep: zero velocity,
+  // no force, which integrate to themselves exactly).
+  std::vector<std::int32_t> blocks;
   simd::BodyArrays arrays() { return {velocity.data(), delta.data(), mass.data()}; }
 };
 
-// The joints of one lane width in coloured batches; see lane_solver.hpp.
+// A kernel variant in the lanes: which, and how much of it (see solver/joint_batches.hpp).
+struct KernelUse {
+  JointType type;
+  std::uint8_t variant;  // index into kBallVariants or kDistanceVariants
+  simd::JointFeatures features{};
+  int rows_per_joint = 0;
+  std::uint32_t batches = 0;
+  std::uint32_t joints = 0;
+};
+
+// The joints of one lane width in coloured batches; see lane_solver.cpp.
 class LaneSolver {
  public:
+  enum class Pass { Solve, Relax };
   virtual ~LaneSolver() = default;
   virtual int lanes() const = 0;
-  // Lays out all joints from the colouring; impulses come from the slots.
+  // Lays out the awake joints from the colouring; impulses come from the slots. specialize:
+  // each joint runs the kernel variant of its signature, else the general kernel.
   virtual void pack(const graph_coloring::GraphColoring& coloring,
-                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies) = 0;
+                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+                    bool specialize) = 0;
   // Copies the lanes' impulses back into the slots (before a re-pack).
   virtual void save_impulses(std::vector<JointSlot>& joints) const = 0;
-  virtual Eigen::Vector3f impulse(std::uint32_t joint_slot) const = 0;
+  virtual bool in_lanes(std::uint32_t joint_slot) const = 0;
+  virtual Eigen::Vector3f impulse(std::uint32_t joint_slot) const = 0;  // when in_lanes
+  virtual const std::vector<KernelUse>& uses() const = 0;
+  virtual bool needs(Pass pass) const = 0;  // some variant in the lanes runs this pass
   // extra[body] += factor * |impulse| * |local anchor| for both bodies of every joint.
   virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
                                             std::vector<double>& extra) const = 0;
@@ -92,6 +115,7 @@ class LaneSolver {
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
   virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
+                                    bool gravity, bool damping,
                                     const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
@@ -115,7 +139,8 @@ struct World::Impl {
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;
-  std::vector<double> extra_inertia;  // per body slot (empty: none), from geometric_inertia
+  std::vector<double> extra_inertia;  // per body slot, from geometric_inertia (awake entries)
+  bool extra_inertia_on = false;      // this step adds extra_inertia
   double last_substep = 0.0;          // s, of the last step (for joint forces)
   // A joint was created since the last step: it has no force for the geometric inertia yet,
   // so the next step recomputes that inertia after its first sub-step (see step.cpp).
@@ -130,8 +155,27 @@ struct World::Impl {
   StepProfile profile;  // of the last step, while profiling
   bool capturing = false;
   SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
+  StepPlan plan;
+  bool plan_built = false;  // false after any change of content or settings
 
-  void unpack_joints();  // save impulses to slots and mark for re-pack
+  // Sleeping islands: the body slots of each, in slot order; emptied when woken.
+  std::vector<std::vector<std::uint32_t>> islands;
+  std::vector<std::uint32_t> free_islands;  // last freed first
+  std::size_t sleeping_islands = 0;
+  std::vector<std::uint32_t> island_root;   // per body slot, scratch of update_sleep
+  std::vector<double> island_rest;          // per body slot, scratch of update_sleep
+  std::vector<std::uint32_t> island_index;  // per body slot, scratch of update_sleep
+
+  void unpack_joints();    // save impulses to slots and mark for re-pack
+  void content_changed();  // bodies or joints to re-list and re-pack, plan to rebuild
+  void build_plan();       // packs, lists and plans if anything changed
+  // The user touched this body: its island wakes, and it starts its rest time again.
+  void touch(std::uint32_t body_slot);
+  void wake_island(std::uint32_t island);
+  void wake_all();
+  // After a step of dt: rest times, then islands whose bodies all rested time_to_sleep.
+  void update_sleep(double dt);
+  void sleep_island(const std::vector<std::uint32_t>& members);
   // Per body slot, the inertia (kg m^2, added on the diagonal) that keeps the alignment
   // mode resolvable at sub-step h: h^2 sum over its joints of |force| |anchor offset|, the
   // forces being the lanes' impulses over `impulse_substep` (s; 0: none known, no pass).

@@ -168,7 +168,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           break;
         case 6: {
           const BodyId b = pick(in, bodies);
-          switch (in.ConsumeIntegralInRange<int>(0, 4)) {
+          switch (in.ConsumeIntegralInRange<int>(0, 5)) {
             case 0:
               world.set_position(b, vec(in));
               break;
@@ -181,6 +181,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
               break;
             case 3:
               world.set_angular_velocity(b, vec(in));
+              break;
+            case 4:
+              world.apply_impulse(b, vec(in), vec(in));
               break;
             default:
               world.set_mass_properties(b, value(in),
@@ -197,6 +200,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           s.solve_iterations = in.ConsumeIntegralInRange<int>(0, 3);
           s.max_linear_speed = value(in);
           s.warm_start = in.ConsumeBool();
+          s.sleeping = in.ConsumeBool();
+          s.specialize = in.ConsumeBool();
+          s.time_to_sleep = value(in);
           s.rigid_hertz = value(in);
           s.simd = static_cast<softstep::SimdWidth>(in.ConsumeIntegralInRange<int>(0, 3));
           world.set_settings(s);

@@ -31,6 +31,7 @@ struct BodyDef {
   double gravity_scale = 1.0;    // multiplies the world's gravity, any finite value
   double linear_damping = 0.0;   // 1/s, >= 0: v' = -c v
   double angular_damping = 0.0;  // 1/s, >= 0
+  bool never_sleep = false;      // keeps the body, and every island it joins, awake
 };
 
 // Inertia of a solid sphere, kg m^2 (a helper for the common case).

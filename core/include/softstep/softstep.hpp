@@ -7,5 +7,6 @@
 #include "softstep/joints.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/spring.hpp"
+#include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"
 #include "softstep/world_settings.hpp"

@@ -12,6 +12,7 @@
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"
 #include "softstep/profile.hpp"
+#include "softstep/step_plan.hpp"
 #include "softstep/world_settings.hpp"
 
 namespace softstep {
@@ -85,6 +86,12 @@ class World {
   void set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity);
   void set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity);
   void set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia);
+  // Adds impulse (N s, world frame) at world_point to a dynamic body's velocities.
+  void apply_impulse(BodyId id, const Eigen::Vector3d& impulse, const Eigen::Vector3d& world_point);
+  // False while the body's island sleeps (static bodies: always false). Setting a velocity,
+  // a pose or the mass, applying an impulse, or adding or removing a joint on the body wakes
+  // its island.
+  bool is_awake(BodyId id) const;
   std::size_t body_count() const;
 
   JointId create_ball_joint(const BallJointDef& def);
@@ -99,6 +106,9 @@ class World {
   void step(double dt);
 
   SolverLayout solver_layout() const;
+  // What the next step runs: the effects the awake content has, the stages and kernel
+  // variants, awake bodies and sleeping islands. Built only when the content changed.
+  const StepPlan& step_plan() const;
 
   // While on, every step records its first sub-step in solve_capture() (costs a copy of the
   // body state and an extra barrier per step; off by default).

@@ -49,6 +49,18 @@ struct WorldSettings {
   // range (README, "Input ranges"); 10 km/s is above anything a game throws.
   double max_linear_speed = 1e4;
   SimdWidth simd = SimdWidth::Best;
+  // Sleeping. An island (bodies linked by joints; a static body links nothing) whose bodies
+  // all stay below both speeds for time_to_sleep falls asleep: its bodies stop (velocity 0)
+  // and cost nothing per step until something wakes it (README, "Sleeping").
+  bool sleeping = true;
+  double sleep_linear_speed = 0.05;   // m/s, >= 0
+  double sleep_angular_speed = 0.05;  // rad/s, >= 0
+  double time_to_sleep = 0.5;         // s, >= 0
+  // Each joint runs the kernel compiled for exactly its features and the step leaves out the
+  // stages the scene has no use for (World::step_plan). false: every joint runs the general
+  // kernel and every stage runs, fed neutral values: the baseline the benchmarks compare
+  // with. Both give the same results (up to the sign of a zero).
+  bool specialize = true;
 };
 
 }  // namespace softstep

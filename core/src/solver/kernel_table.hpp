@@ -3,60 +3,94 @@
 // function compiled with AVX2 there could be picked by the linker for scalar code).
 #pragma once
 
+#include <utility>
+
 #include "solver/joint_batches.hpp"
 
 namespace softstep::solver {
 
-// Applies f to this thread's share of the ball groups and then of the distance groups.
-template <int W, class Ball, class Distance>
-void for_share(ColorBatches<W>& c, const Share& share, Ball&& ball, Distance&& distance) {
-  const Slice b = slice_of(c.ball.size(), share);
-  for (std::size_t i = b.begin; i < b.end; ++i) ball(c.ball[i]);
-  const Slice d = slice_of(c.distance.size(), share);
-  for (std::size_t i = d.begin; i < d.end; ++i) distance(c.distance[i]);
+// One variant's passes, each a loop over consecutive groups; nullptr for a pass the variant
+// does not need.
+template <class L, JointFeatures F>
+VariantKernels<simd::BallJointGroup<simd::kWidth<L>>> ball_variant() {
+  using Group = simd::BallJointGroup<simd::kWidth<L>>;
+  VariantKernels<Group> k{};
+  k.prepare = [](Group* g, std::size_t n, const simd::SubstepContext& ctx) {
+    for (std::size_t i = 0; i < n; ++i) simd::prepare_ball_joints<L, F>(g[i], ctx);
+  };
+  if constexpr (simd::ball_needs_solve(F)) {
+    k.warm_start = [](Group* g, std::size_t n, const simd::BodyArrays& b) {
+      for (std::size_t i = 0; i < n; ++i) simd::warm_start_ball_joints<L, F>(g[i], b);
+    };
+    k.solve = [](Group* g, std::size_t n, const simd::BodyArrays& b, const simd::SubstepContext&) {
+      for (std::size_t i = 0; i < n; ++i) simd::solve_ball_joints<L, true, F>(g[i], b);
+    };
+  }
+  if constexpr (simd::ball_needs_relax(F)) {
+    k.relax = [](Group* g, std::size_t n, const simd::BodyArrays& b, const simd::SubstepContext&) {
+      for (std::size_t i = 0; i < n; ++i) simd::solve_ball_joints<L, false, F>(g[i], b);
+    };
+  }
+  return k;
+}
+
+template <class L, JointFeatures F>
+VariantKernels<simd::DistanceJointGroup<simd::kWidth<L>>> distance_variant() {
+  using Group = simd::DistanceJointGroup<simd::kWidth<L>>;
+  VariantKernels<Group> k{};
+  k.prepare = [](Group* g, std::size_t n, const simd::SubstepContext& ctx) {
+    for (std::size_t i = 0; i < n; ++i) simd::prepare_distance_joints<L, F>(g[i], ctx);
+  };
+  if constexpr (simd::distance_needs_solve(F)) {
+    k.warm_start = [](Group* g, std::size_t n, const simd::BodyArrays& b) {
+      for (std::size_t i = 0; i < n; ++i) simd::warm_start_distance_joints<L, F>(g[i], b);
+    };
+    k.solve = [](Group* g, std::size_t n, const simd::BodyArrays& b,
+                 const simd::SubstepContext& ctx) {
+      for (std::size_t i = 0; i < n; ++i) simd::solve_distance_joints<L, true, F>(g[i], b, ctx);
+    };
+  }
+  if constexpr (simd::distance_needs_relax(F)) {
+    k.relax = [](Group* g, std::size_t n, const simd::BodyArrays& b,
+                 const simd::SubstepContext& ctx) {
+      for (std::size_t i = 0; i < n; ++i) simd::solve_distance_joints<L, false, F>(g[i], b, ctx);
+    };
+  }
+  return k;
+}
+
+template <class L, bool kGravity, bool kDamping>
+void integrate_velocity_blocks(simd::VelocityRecord* v, const simd::ForceRecord* f,
+                               const std::int32_t* blocks, std::size_t count,
+                               const simd::SubstepContext& ctx) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int lane = 0; lane < kBodyBlock; lane += simd::kWidth<L>) {
+      simd::integrate_velocities<L, kGravity, kDamping>(v, f, blocks[i] + lane, ctx);
+    }
+  }
 }
 
 template <class L>
 KernelTable<simd::kWidth<L>> make_kernel_table() {
-  constexpr int W = simd::kWidth<L>;
-  using Ball = simd::BallJointGroup<W>;
-  using Distance = simd::DistanceJointGroup<W>;
-  KernelTable<W> t;
-  t.prepare = [](ColorBatches<W>& c, const simd::SubstepContext& ctx, const Share& s) {
-    for_share(
-        c, s, [&](Ball& g) { simd::prepare_ball_joints<L>(g, ctx); },
-        [&](Distance& g) { simd::prepare_distance_joints<L>(g, ctx); });
-  };
-  t.warm_start = [](ColorBatches<W>& c, const simd::BodyArrays& b, const Share& s) {
-    for_share(
-        c, s, [&](Ball& g) { simd::warm_start_ball_joints<L>(g, b); },
-        [&](Distance& g) { simd::warm_start_distance_joints<L>(g, b); });
-  };
-  t.solve = [](ColorBatches<W>& c, const simd::BodyArrays& b, const simd::SubstepContext& ctx,
-               const Share& s) {
-    for_share(
-        c, s, [&](Ball& g) { simd::solve_ball_joints<L, true>(g, b); },
-        [&](Distance& g) { simd::solve_distance_joints<L, true>(g, b, ctx); });
-  };
-  t.relax = [](ColorBatches<W>& c, const simd::BodyArrays& b, const simd::SubstepContext& ctx,
-               const Share& s) {
-    for_share(
-        c, s, [&](Ball& g) { simd::solve_ball_joints<L, false>(g, b); },
-        [&](Distance& g) { simd::solve_distance_joints<L, false>(g, b, ctx); });
-  };
-  t.integrate_velocities = [](simd::VelocityRecord* v, const simd::ForceRecord* f,
-                              std::int32_t count, const simd::SubstepContext& ctx,
-                              const Share& s) {
-    const Slice blocks = slice_of(static_cast<std::size_t>(count / W), s);
-    for (std::size_t i = blocks.begin; i < blocks.end; ++i) {
-      simd::integrate_velocities<L>(v, f, static_cast<std::int32_t>(i) * W, ctx);
-    }
-  };
+  KernelTable<simd::kWidth<L>> t;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    t.ball = {ball_variant<L, kBallVariants[I]>()...};
+  }
+  (std::make_index_sequence<kBallVariants.size()>());
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    t.distance = {distance_variant<L, kDistanceVariants[I]>()...};
+  }
+  (std::make_index_sequence<kDistanceVariants.size()>());
+  t.integrate_velocities[0][0] = integrate_velocity_blocks<L, false, false>;
+  t.integrate_velocities[0][1] = integrate_velocity_blocks<L, false, true>;
+  t.integrate_velocities[1][0] = integrate_velocity_blocks<L, true, false>;
+  t.integrate_velocities[1][1] = integrate_velocity_blocks<L, true, true>;
   t.integrate_positions = [](simd::DeltaRecord* d, const simd::VelocityRecord* v,
-                             std::int32_t count, float h, const Share& s) {
-    const Slice blocks = slice_of(static_cast<std::size_t>(count / W), s);
-    for (std::size_t i = blocks.begin; i < blocks.end; ++i) {
-      simd::integrate_positions<L>(d, v, static_cast<std::int32_t>(i) * W, h);
+                             const std::int32_t* blocks, std::size_t count, float h) {
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int lane = 0; lane < kBodyBlock; lane += simd::kWidth<L>) {
+        simd::integrate_positions<L>(d, v, blocks[i] + lane, h);
+      }
     }
   };
   return t;

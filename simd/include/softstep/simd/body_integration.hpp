@@ -32,19 +32,27 @@ SOFTSTEP_INLINE void clamp_norm(L& x, L& y, L& z, L limit) {
 }
 
 // Bodies [first, first + W) at once: records are contiguous, so the "gather" is W aligned
-// loads and a transpose. Callers pass whole blocks; slots of static bodies and free slots hold
-// zero velocity and an identity rotation, which integrate to themselves exactly.
-template <class L>
+// loads and a transpose. Callers pass whole blocks; slots of static bodies, free slots and
+// sleeping bodies hold zero velocity, no force and an identity rotation, which integrate to
+// themselves exactly.
+// kGravity, kDamping: compiled out when no body of the step has any (a gravity of 0 and a
+// damping factor of 1 give the same velocities: v + h 0 = v, v 1 = v).
+template <class L, bool kGravity = true, bool kDamping = true>
 SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceRecord* force,
                                           std::int32_t first, const SubstepContext& ctx) {
   const float h = ctx.h;
   std::int32_t index[kWidth<L>];
   for (int i = 0; i < kWidth<L>; ++i) index[i] = first + i;
   Rows8<L> v = gather_rows<L>(velocity, index);
-  const Rows8<L> f = gather_rows<L>(force, index);
-  for (int k = 0; k < 3; ++k) {
-    v.r[k] = fmadd(L(h), f.r[k], v.r[k]) * f.r[3];
-    v.r[k + 3] = v.r[k + 3] * f.r[4];
+  if constexpr (kGravity || kDamping) {
+    const Rows8<L> f = gather_rows<L>(force, index);
+    for (int k = 0; k < 3; ++k) {
+      if constexpr (kGravity) v.r[k] = fmadd(L(h), f.r[k], v.r[k]);
+      if constexpr (kDamping) {
+        v.r[k] = v.r[k] * f.r[3];
+        v.r[k + 3] = v.r[k + 3] * f.r[4];
+      }
+    }
   }
   // A body may turn at most a quarter turn per sub-step. Beyond it the first-order rotation
   // update is meaningless and a joint anchored off the centre swings its anchor anywhere: links

@@ -65,7 +65,7 @@ SOFTSTEP_INLINE Vec3<L> normalize_or_zero(const Vec3<L>& d, L& length) {
 // One unilateral limit row acting along sign * n (C >= 0 wanted, impulse >= 0). Ahead of
 // contact (C > 0) it is speculative: the gap may close within one sub-step but not beyond,
 // in solve and relax alike.
-template <class L, bool kUseBias>
+template <class L, bool kUseBias, bool kPerLaneEnable>
 SOFTSTEP_INLINE void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const L& sign, const L& c,
                                      const L& k, const L& axial, const float* enabled,
                                      float* accumulated_lanes, const SubstepContext& ctx) {
@@ -89,32 +89,48 @@ SOFTSTEP_INLINE void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const 
   const L raw =
       fmadd(L(0.0f) - mass_scale * axial, cdot + bias, L(0.0f) - impulse_scale * accumulated);
   const L next = max_lanes(accumulated + raw, L(0.0f));
-  const L dp = select(load<L>(enabled) > L(0.0f), next - accumulated, L(0.0f));
+  L dp = next - accumulated;
+  if constexpr (kPerLaneEnable) dp = select(load<L>(enabled) > L(0.0f), dp, L(0.0f));
   store_lanes(accumulated_lanes, accumulated + dp);
   apply_impulse(j, (sign * dp) * n);
 }
 }  // namespace detail
 
-template <class L>
-SOFTSTEP_INLINE void prepare_distance_joints(DistanceJointGroup<kWidth<L>>& g,
-                                             const SubstepContext& ctx) {
-  prepare_row_coefficients<L>(g, ctx);
+// Which passes a distance-joint variant needs: the spring row unless it is free, the limit
+// rows it has; relax only for a rod or a limit (springs are not relaxed).
+inline constexpr bool distance_needs_solve(JointFeatures f) {
+  return f.row != RowKind::Free || f.lower || f.upper;
+}
+inline constexpr bool distance_needs_relax(JointFeatures f) {
+  return f.row == RowKind::Any || f.row == RowKind::Rigid || f.lower || f.upper;
 }
 
-template <class L>
+template <class L, JointFeatures F = kGeneralKernel>
+SOFTSTEP_INLINE void prepare_distance_joints(DistanceJointGroup<kWidth<L>>& g,
+                                             const SubstepContext& ctx) {
+  prepare_row_coefficients<L, F>(g, ctx);
+}
+
+template <class L, JointFeatures F = kGeneralKernel>
 SOFTSTEP_INLINE void warm_start_distance_joints(DistanceJointGroup<kWidth<L>>& g,
                                                 const BodyArrays& bodies) {
+  if constexpr (!distance_needs_solve(F)) return;
   JointBodies<L> j = gather_joint<L>(g, bodies);
   L length;
   const Vec3<L> n = detail::normalize_or_zero(j.separation, length);
-  const L total = load<L>(g.impulse) + load<L>(g.lower_impulse) - load<L>(g.upper_impulse);
+  // Rows a variant lacks hold 0; the general kernel adds their zeros.
+  L total = F.row == RowKind::Free ? L(0.0f) : load<L>(g.impulse);
+  if constexpr (F.lower) total = total + load<L>(g.lower_impulse);
+  if constexpr (F.upper) total = total - load<L>(g.upper_impulse);
   apply_impulse(j, total * n);
   scatter_joint(g, bodies, j);
 }
 
-template <class L, bool kUseBias>
+template <class L, bool kUseBias, JointFeatures F = kGeneralKernel>
 SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
                                            const BodyArrays& bodies, const SubstepContext& ctx) {
+  if constexpr (kUseBias ? !distance_needs_solve(F) : !distance_needs_relax(F)) return;
+  constexpr bool kAny = F.row == RowKind::Any;
   JointBodies<L> j = gather_joint<L>(g, bodies);
   L length;
   const Vec3<L> n = detail::normalize_or_zero(j.separation, length);
@@ -122,16 +138,22 @@ SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
                                     j.b.inv_inertia, j.r_b, n);
   const L axial = inverse_or_zero(k);
 
-  // Spring or rod row.
-  {
+  // Spring or rod row: solved unless free, relaxed only when rigid.
+  if constexpr (kUseBias ? F.row != RowKind::Free
+                         : (F.row == RowKind::Any || F.row == RowKind::Rigid)) {
     const L cdot = dot(n, relative_velocity(j));
     const L accumulated = load<L>(g.impulse);
     L dp;
     if constexpr (kUseBias) {
-      const L bias = bounded_bias(load<L>(g.bias_rate) * (length - load<L>(g.rest_length)),
-                                  load<L>(g.feedback) * k * accumulated, load<L>(g.max_bias));
+      L bias = load<L>(g.bias_rate) * (length - load<L>(g.rest_length));
+      if constexpr (F.row != RowKind::Soft) {
+        bias = bounded_bias<L, F.row>(bias, load<L>(g.feedback) * k * accumulated,
+                                      load<L>(g.max_bias));
+      }
       dp = fmadd(L(0.0f) - load<L>(g.mass_scale) * axial, cdot + bias,
                  L(0.0f) - load<L>(g.impulse_scale) * accumulated);
+    } else if constexpr (F.row == RowKind::Rigid) {
+      dp = L(-1.0f) * axial * cdot;  // relax_scale is 1: (0 - 1) axial cdot, as in general
     } else {
       dp = (L(0.0f) - load<L>(g.relax_scale)) * axial * cdot;
     }
@@ -139,10 +161,14 @@ SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
     apply_impulse(j, dp * n);
   }
   // Lower limit pushes apart (along n), upper limit pulls together (along -n).
-  detail::solve_limit_row<L, kUseBias>(j, n, L(1.0f), length - load<L>(g.min_length), k, axial,
-                                       g.lower_enabled, g.lower_impulse, ctx);
-  detail::solve_limit_row<L, kUseBias>(j, n, L(-1.0f), load<L>(g.max_length) - length, k, axial,
-                                       g.upper_enabled, g.upper_impulse, ctx);
+  if constexpr (F.lower) {
+    detail::solve_limit_row<L, kUseBias, kAny>(j, n, L(1.0f), length - load<L>(g.min_length), k,
+                                               axial, g.lower_enabled, g.lower_impulse, ctx);
+  }
+  if constexpr (F.upper) {
+    detail::solve_limit_row<L, kUseBias, kAny>(j, n, L(-1.0f), load<L>(g.max_length) - length, k,
+                                               axial, g.upper_enabled, g.upper_impulse, ctx);
+  }
   scatter_joint(g, bodies, j);
 }
 

@@ -12,6 +12,23 @@ namespace softstep::simd {
 // Marks a padding lane in JointLanes::id.
 inline constexpr std::uint32_t kPaddingLane = 0xFFFFFFFFu;
 
+// What the spring row of every lane of a group is. Any: each lane says (hertz +inf = rigid,
+// 0 = free, else soft) and the kernel switches per lane; the others are the same for all lanes
+// of the group, so the kernel is compiled with only that case's terms.
+enum class RowKind : std::uint8_t { Any, Rigid, Soft, Free };
+
+// The features a kernel is compiled for: a template parameter, so one kernel source gives a
+// variant per signature and no lane evaluates a term or a branch its group does not need.
+// The default is the general kernel, which handles every lane by its values (a padding lane,
+// a disabled limit, a free spring: all by per-lane switches).
+struct JointFeatures {
+  RowKind row = RowKind::Any;
+  bool lower = true;  // distance joints: the min-length row (per-lane enable in Any)
+  bool upper = true;  // distance joints: the max-length row
+  constexpr bool operator==(const JointFeatures&) const = default;
+};
+inline constexpr JointFeatures kGeneralKernel{};
+
 template <int W>
 struct alignas(32) JointLanes {
   std::uint32_t id[W];  // the caller's id for the constraint in this lane, kPaddingLane if none
@@ -33,8 +50,27 @@ struct alignas(32) JointLanes {
   float relax_scale[W];  // 1 for rigid rows, 0 for springs (springs are not relaxed)
 };
 
-template <class L, int W>
+template <class L, JointFeatures F = kGeneralKernel, int W>
 SOFTSTEP_INLINE void prepare_row_coefficients(JointLanes<W>& g, const SubstepContext& ctx) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  if constexpr (F.row == RowKind::Rigid) {
+    store_lanes(g.bias_rate, L(ctx.rigid.bias_rate));
+    store_lanes(g.mass_scale, L(ctx.rigid.mass_scale));
+    store_lanes(g.impulse_scale, L(ctx.rigid.impulse_scale));
+    store_lanes(g.feedback, L(ctx.rigid.feedback));
+    store_lanes(g.max_bias, L(ctx.max_correction_speed));
+    store_lanes(g.relax_scale, L(1.0f));
+    return;
+  } else if constexpr (F.row != RowKind::Any) {
+    const Softness<L> spring = make_softness(load<L>(g.hertz), load<L>(g.zeta), ctx.h);
+    store_lanes(g.bias_rate, spring.bias_rate);
+    store_lanes(g.mass_scale, spring.mass_scale);
+    store_lanes(g.impulse_scale, spring.impulse_scale);
+    store_lanes(g.feedback, spring.feedback);
+    store_lanes(g.max_bias, L(kInf));
+    store_lanes(g.relax_scale, L(0.0f));
+    return;
+  }
   const L hertz = load<L>(g.hertz);
   const auto rigid = hertz == L(kRigidHertz);
   const Softness<L> spring = make_softness(select(rigid, L(0.0f), hertz), load<L>(g.zeta), ctx.h);
@@ -42,8 +78,7 @@ SOFTSTEP_INLINE void prepare_row_coefficients(JointLanes<W>& g, const SubstepCon
   store_lanes(g.mass_scale, select(rigid, L(ctx.rigid.mass_scale), spring.mass_scale));
   store_lanes(g.impulse_scale, select(rigid, L(ctx.rigid.impulse_scale), spring.impulse_scale));
   store_lanes(g.feedback, select(rigid, L(ctx.rigid.feedback), spring.feedback));
-  store_lanes(g.max_bias, select(rigid, L(ctx.max_correction_speed),
-                                 L(std::numeric_limits<float>::infinity())));
+  store_lanes(g.max_bias, select(rigid, L(ctx.max_correction_speed), L(kInf)));
   store_lanes(g.relax_scale, select(rigid, L(1.0f), L(0.0f)));
 }
 
@@ -117,10 +152,16 @@ SOFTSTEP_INLINE L clamp_lanes(const L& v, const L& bound) {
 // load needs asked for more than max_bias.
 // Springs (bound = +inf) keep their bias untouched, so a spring stays exactly the
 // implicit-Euler spring (adding and removing gamma' P would round).
-template <class L>
+// A group known to be rigid takes the bounded side without the per-lane test (springs do
+// not call it: their bias is never bounded).
+template <class L, RowKind kRow = RowKind::Any>
 SOFTSTEP_INLINE L bounded_bias(const L& bias, const L& feedback_velocity, const L& bound) {
-  return select(bound == L(std::numeric_limits<float>::infinity()), bias,
-                clamp_lanes(bias + feedback_velocity, bound) - feedback_velocity);
+  if constexpr (kRow == RowKind::Rigid) {
+    return clamp_lanes(bias + feedback_velocity, bound) - feedback_velocity;
+  } else {
+    return select(bound == L(std::numeric_limits<float>::infinity()), bias,
+                  clamp_lanes(bias + feedback_velocity, bound) - feedback_velocity);
+  }
 }
 
 }  // namespace softstep::simd

@@ -22,7 +22,15 @@
 // Kernels are built from many small helpers over batch types; when gcc declines to inline
 // one (it did for the 8-wide gather and transpose), its batches go through memory and the
 // AVX2 kernel ran slower than SSE. Every helper here is forced inline.
+// Except under AddressSanitizer, where speed does not matter: forced into each of the
+// kernel variants (joint_batches.hpp) with every access instrumented, one kernel table took
+// over 10 minutes to compile (5x the general kernels alone). There the compiler chooses; the
+// arithmetic, and so every result, is the same inlined or not (contraction is off).
+#if defined(__SANITIZE_ADDRESS__)
+#define SOFTSTEP_INLINE inline
+#else
 #define SOFTSTEP_INLINE inline __attribute__((always_inline))
+#endif
 
 namespace softstep::simd {
 

@@ -1,0 +1,64 @@
+// What a step runs, built from the world's content (World::step_plan): only the stages and
+// kernel variants the scene calls for. Rebuilt when the content changes, not every step.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "softstep/joints.hpp"
+
+namespace softstep {
+
+// Stages of a step in run order. Gravity, Damping and SpinLimit run fused in one loop over
+// the bodies (the velocity integration); a stage absent from the plan costs nothing: no
+// loop, no barrier.
+enum class PlanStage : std::uint8_t {
+  PrepareBodies,       // body records from the world (once per step)
+  PrepareJoints,       // anchors and softness coefficients (once per step)
+  Gravity,             // per sub-step: some awake body feels gravity
+  Damping,             // per sub-step: some awake body has linear or angular damping
+  SpinLimit,           // per sub-step: the bound on rotation per sub-step (always, with bodies)
+  WarmStart,           // per sub-step: last sub-step's impulses applied
+  ClearImpulses,       // per sub-step: warm starting off
+  Solve,               // per sub-step: soft, biased pass
+  IntegratePositions,  // per sub-step
+  Relax,               // per sub-step: only with rigid rows or limit rows (springs are not relaxed)
+  Store,               // poses and velocities back to the world (once per step)
+};
+inline constexpr int kPlanStageCount = 11;
+const char* plan_stage_name(PlanStage stage);  // "prepare_bodies", "gravity", ...
+
+// What the spring row of a kernel variant is: Any is the general kernel (per-lane switches).
+enum class SpringRow : std::uint8_t { Any, Rigid, Soft, Free };
+const char* spring_row_name(SpringRow row);  // "any", "rigid", "soft", "free"
+
+// One kernel variant the step runs: the features it is compiled with and how much it runs.
+struct PlanKernel {
+  JointType type;
+  SpringRow row;
+  bool lower_limit;       // distance joints: min-length row (the general kernel: per lane)
+  bool upper_limit;       // distance joints: max-length row
+  int rows_per_joint;     // constraint rows one joint solves per pass
+  std::uint32_t batches;  // lane groups
+  std::uint32_t joints;
+};
+
+struct StepPlan {
+  // Effects the awake content has.
+  bool gravity = false;               // an awake dynamic body with gravity x gravity_scale != 0
+  bool damping = false;               // an awake body with linear or angular damping
+  bool springs = false;               // an awake joint with a soft spring
+  bool limits = false;                // an awake distance joint with a min or max limit row
+  bool warm_start = false;            // settings().warm_start, with joints awake
+  bool kinematic_bodies = false;      // an awake kinematic body
+  bool unconstrained_bodies = false;  // an awake movable body with no joint
+  bool specialized = true;            // false: WorldSettings::specialize is off (general kernels)
+  std::vector<PlanStage> stages;      // in run order; Gravity..Relax repeat every sub-step
+  std::vector<PlanKernel> kernels;    // ordered by type, then variant
+  std::size_t awake_bodies = 0;       // movable bodies integrated each sub-step
+  std::size_t sleeping_islands = 0;
+  std::uint64_t rows_per_pass = 0;  // constraint rows one solve pass runs
+  std::uint64_t builds = 0;         // how many times this world has built its plan
+};
+
+}  // namespace softstep

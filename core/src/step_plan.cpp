@@ -1,0 +1,147 @@
+// The step plan: which effects the awake content has, and from them the stages and kernel
+// variants a step runs. Built when the content or the settings changed, never per step.
+#include <algorithm>
+
+#include "solver/joint_batches.hpp"
+#include "world_impl.hpp"
+
+namespace softstep {
+
+namespace {
+
+SpringRow public_row(simd::RowKind row) {
+  switch (row) {
+    case simd::RowKind::Any:
+      return SpringRow::Any;
+    case simd::RowKind::Rigid:
+      return SpringRow::Rigid;
+    case simd::RowKind::Soft:
+      return SpringRow::Soft;
+    case simd::RowKind::Free:
+      return SpringRow::Free;
+  }
+  return SpringRow::Any;
+}
+
+}  // namespace
+
+void World::Impl::build_plan() {
+  if (!joints_packed || !bodies_listed) thread_policy = {};  // new content: measure afresh
+  if (!joints_packed) {
+    lane_solver->pack(coloring, joints, bodies, settings.specialize);
+    joints_packed = true;
+    plan_built = false;
+  }
+  if (!bodies_listed) {
+    list_bodies();
+    plan_built = false;
+  }
+  if (plan_built) return;
+
+  StepPlan p;
+  p.builds = plan.builds + 1;
+  p.specialized = settings.specialize;
+  p.awake_bodies = solver_bodies.movable.size();
+  p.sleeping_islands = sleeping_islands;
+  for (std::uint32_t s : solver_bodies.movable) {
+    const BodySlot& b = bodies[s];
+    if (b.type == BodyType::Kinematic) {
+      p.kinematic_bodies = true;
+    } else {
+      p.gravity |= b.gravity_scale != 0.0 && !settings.gravity.isZero(0.0);
+      p.damping |= b.linear_damping > 0.0 || b.angular_damping > 0.0;
+    }
+    p.unconstrained_bodies |= b.joints.empty();
+  }
+  for (const KernelUse& u : lane_solver->uses()) {
+    p.kernels.push_back(
+        {u.type, public_row(u.features.row), u.type == JointType::Distance && u.features.lower,
+         u.type == JointType::Distance && u.features.upper, u.rows_per_joint, u.batches, u.joints});
+    p.rows_per_pass += std::uint64_t(u.rows_per_joint) * u.joints;
+  }
+  // The general kernel's joints say per lane; look at them to tell the effects.
+  for (std::uint32_t j = 0; j < joints.size(); ++j) {
+    const JointSlot& slot = joints[j];
+    if (!slot.alive || !lane_solver->in_lanes(j)) continue;
+    const bool rigid = slot.spring.is_rigid();
+    p.springs |= !rigid && !slot.spring.is_free();
+    p.limits |=
+        slot.type == JointType::Distance && !rigid &&
+        (slot.min_length > 0.0 || slot.max_length < std::numeric_limits<double>::infinity());
+  }
+  const bool joints_awake = !p.kernels.empty();
+  p.warm_start = joints_awake && settings.warm_start;
+
+  // Specialized, a stage runs only for an effect present; general, every stage runs (a
+  // gravity of 0, a damping of 1, a spring that does nothing).
+  const bool all = !settings.specialize;
+  const bool bodies_awake = p.awake_bodies > 0;
+  const bool solve = joints_awake && (all || lane_solver->needs(LaneSolver::Pass::Solve));
+  const bool relax = joints_awake && settings.relax_iterations > 0 &&
+                     (all || lane_solver->needs(LaneSolver::Pass::Relax));
+  const auto add = [&](bool on, PlanStage stage) {
+    if (on) p.stages.push_back(stage);
+  };
+  add(bodies_awake, PlanStage::PrepareBodies);
+  add(joints_awake, PlanStage::PrepareJoints);
+  add(bodies_awake && (all || p.gravity), PlanStage::Gravity);
+  add(bodies_awake && (all || p.damping), PlanStage::Damping);
+  add(bodies_awake, PlanStage::SpinLimit);
+  add(solve && settings.warm_start, PlanStage::WarmStart);
+  add(joints_awake && !settings.warm_start, PlanStage::ClearImpulses);
+  add(solve, PlanStage::Solve);
+  add(bodies_awake, PlanStage::IntegratePositions);
+  add(relax, PlanStage::Relax);
+  add(bodies_awake, PlanStage::Store);
+  plan = std::move(p);
+  plan_built = true;
+}
+
+const StepPlan& World::step_plan() const {
+  impl_->build_plan();
+  return impl_->plan;
+}
+
+const char* plan_stage_name(PlanStage stage) {
+  switch (stage) {
+    case PlanStage::PrepareBodies:
+      return "prepare_bodies";
+    case PlanStage::PrepareJoints:
+      return "prepare_joints";
+    case PlanStage::Gravity:
+      return "gravity";
+    case PlanStage::Damping:
+      return "damping";
+    case PlanStage::SpinLimit:
+      return "spin_limit";
+    case PlanStage::WarmStart:
+      return "warm_start";
+    case PlanStage::ClearImpulses:
+      return "clear_impulses";
+    case PlanStage::Solve:
+      return "solve";
+    case PlanStage::IntegratePositions:
+      return "integrate_positions";
+    case PlanStage::Relax:
+      return "relax";
+    case PlanStage::Store:
+      return "store";
+  }
+  return "?";
+}
+
+const char* spring_row_name(SpringRow row) {
+  switch (row) {
+    case SpringRow::Any:
+      return "any";
+    case SpringRow::Rigid:
+      return "rigid";
+    case SpringRow::Soft:
+      return "soft";
+    case SpringRow::Free:
+      return "free";
+  }
+  return "?";
+}
+
+}  // namespace softstep

@@ -1,0 +1,228 @@
+// The step plan and the feature-specialized kernels: a scene runs only the stages and
+// kernel variants its content calls for, and the result is the one the general kernels
+// give when fed neutral values (no spring, no limit rows, zero gravity).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+
+#include "scenes/chain_scene.hpp"
+
+namespace softstep {
+namespace {
+
+bool has_stage(const StepPlan& p, PlanStage s) {
+  return std::find(p.stages.begin(), p.stages.end(), s) != p.stages.end();
+}
+
+bool has_row(const StepPlan& p, SpringRow row) {
+  return std::any_of(p.kernels.begin(), p.kernels.end(),
+                     [&](const PlanKernel& k) { return k.row == row; });
+}
+
+// Every joint kind the kernels have a variant for, in one world: rigid, soft and free ball
+// joints; distance rods, springs with min, max and both limits, ropes (free + max), a free
+// spring with a min limit. Links swing under `gravity` from a static ceiling, in chains so
+// that joints share bodies, colours and the overflow-free lanes.
+void build_feature_zoo(World& world, double damping) {
+  BodyDef ceiling_def;
+  ceiling_def.type = BodyType::Static;
+  const BodyId ceiling = world.create_body(ceiling_def);
+  const auto chain = [&](double z, const std::function<void(BodyId, BodyId, int)>& joint) {
+    BodyId previous = ceiling;
+    for (int i = 0; i < 12; ++i) {
+      BodyDef d;
+      d.position = {0.3 * (i + 1), 0.02 * i, z};
+      d.angular_velocity = {0.0, 0.0, 0.5};
+      d.linear_damping = damping;
+      const BodyId body = world.create_body(d);
+      joint(previous, body, i);
+      previous = body;
+    }
+  };
+  const auto ball = [&](Spring spring) {
+    return [&world, spring](BodyId a, BodyId b, int) {
+      BallJointDef j;
+      j.body_a = a;
+      j.body_b = b;
+      j.local_anchor_b = {-0.15, 0.0, 0.0};
+      j.local_anchor_a = {0.15, 0.0, 0.0};
+      j.spring = spring;
+      world.create_ball_joint(j);
+    };
+  };
+  chain(0.0, ball(Spring::rigid()));
+  chain(1.0, ball(Spring::soft(4.0, 0.3)));
+  chain(2.0, ball(Spring::free()));
+  chain(3.0, [&](BodyId a, BodyId b, int i) {
+    DistanceJointDef j;
+    j.body_a = a;
+    j.body_b = b;
+    j.rest_length = 0.3;
+    switch (i % 6) {
+      case 0:
+        j.spring = Spring::rigid();
+        break;
+      case 1:
+        j.spring = Spring::soft(3.0, 0.2);
+        j.min_length = 0.25;
+        break;
+      case 2:
+        j.spring = Spring::soft(3.0, 0.2);
+        j.max_length = 0.32;
+        break;
+      case 3:
+        j.spring = Spring::soft(2.0, 0.0);
+        j.min_length = 0.28;
+        j.max_length = 0.35;
+        break;
+      case 4:
+        j.spring = Spring::free();
+        j.max_length = 0.31;  // a rope
+        break;
+      default:
+        j.spring = Spring::free();
+        j.min_length = 0.29;
+        break;
+    }
+    world.create_distance_joint(j);
+  });
+}
+
+std::uint64_t run_zoo(bool specialize, SimdWidth width, const Eigen::Vector3d& gravity,
+                      double damping, bool warm_start) {
+  WorldSettings s;
+  s.specialize = specialize;
+  s.simd = width;
+  s.gravity = gravity;
+  s.warm_start = warm_start;
+  World world(s);
+  build_feature_zoo(world, damping);
+  for (int i = 0; i < 120; ++i) world.step(1.0 / 60.0);
+  EXPECT_GT(world.step_plan().awake_bodies, 0u) << "the zoo must still be moving";
+  return world.state_hash();
+}
+
+// The specialized kernels leave out only terms that are exactly neutral in the general
+// kernel (a zero gravity added, a damping factor of 1, a disabled row's zero impulse, a
+// spring's infinite bias bound), so the worlds agree bit for bit, at every width.
+TEST(StepPlan, SpecializedKernelsGiveTheGeneralKernelsTrajectoryBitForBit) {
+  struct Case {
+    Eigen::Vector3d gravity;
+    double damping;
+    bool warm_start;
+  };
+  for (const Case& c : {Case{{0.0, -9.81, 0.0}, 0.0, true}, Case{{0.0, 0.0, 0.0}, 0.0, true},
+                        Case{{0.0, 0.0, 0.0}, 0.5, true}, Case{{0.0, -9.81, 0.0}, 0.2, false}}) {
+    for (SimdWidth width : {SimdWidth::Scalar, SimdWidth::Best}) {
+      EXPECT_EQ(run_zoo(true, width, c.gravity, c.damping, c.warm_start),
+                run_zoo(false, width, c.gravity, c.damping, c.warm_start))
+          << "gravity " << c.gravity.y() << " damping " << c.damping << " width "
+          << simd_width_name(width);
+    }
+  }
+}
+
+TEST(StepPlan, ZooRunsOneVariantPerSignature) {
+  World world;
+  build_feature_zoo(world, 0.0);
+  const StepPlan& plan = world.step_plan();
+  // ball: rigid, soft, free; distance: rod, soft+min, soft+max, soft+both, rope, free+min
+  EXPECT_EQ(plan.kernels.size(), 9u);
+  std::uint32_t joints = 0;
+  for (const PlanKernel& k : plan.kernels) {
+    EXPECT_NE(k.row, SpringRow::Any) << "the general kernel runs nothing in a specialized plan";
+    EXPECT_GT(k.batches, 0u);
+    joints += k.joints;
+  }
+  EXPECT_EQ(joints, world.joint_count());
+  EXPECT_TRUE(plan.springs);
+  EXPECT_TRUE(plan.limits);
+  // Rows: 12 rigid + 12 soft ball joints (3 each), free ball joints none; distance: rods 1,
+  // soft + one limit 2, soft + both 3, rope 1, free + min 1 (two of each kind).
+  EXPECT_EQ(plan.rows_per_pass, 24u * 3 + 2u * (1 + 2 + 2 + 3 + 1 + 1));
+
+  WorldSettings general;
+  general.specialize = false;
+  world.set_settings(general);
+  const StepPlan& all = world.step_plan();
+  ASSERT_EQ(all.kernels.size(), 2u);  // one general kernel per joint type
+  for (const PlanKernel& k : all.kernels) EXPECT_EQ(k.row, SpringRow::Any);
+}
+
+TEST(StepPlan, SceneWithoutGravityDampingOrSpringsSchedulesNoneOfThem) {
+  WorldSettings s;
+  s.gravity.setZero();
+  World world(s);
+  scenes::ChainOptions o;
+  o.links = 20;
+  scenes::build_chain(world, o);  // rigid ball joints, no damping
+  const StepPlan& plan = world.step_plan();
+  EXPECT_FALSE(plan.gravity);
+  EXPECT_FALSE(plan.damping);
+  EXPECT_FALSE(plan.springs);
+  EXPECT_FALSE(has_stage(plan, PlanStage::Gravity));
+  EXPECT_FALSE(has_stage(plan, PlanStage::Damping));
+  EXPECT_FALSE(has_row(plan, SpringRow::Soft));
+  EXPECT_FALSE(has_row(plan, SpringRow::Any));
+  EXPECT_TRUE(has_stage(plan, PlanStage::Solve));
+  EXPECT_TRUE(has_stage(plan, PlanStage::Relax));  // rigid rows are relaxed
+
+  // The same scene with gravity, damping and springs schedules each of them.
+  WorldSettings with = s;
+  with.gravity = {0.0, -9.81, 0.0};
+  World other(with);
+  o.spring = Spring::soft(5.0, 0.5);
+  const scenes::ChainScene scene = scenes::build_chain(other, o);
+  BodyDef damped;
+  damped.linear_damping = 0.1;
+  other.create_body(damped);
+  const StepPlan& full = other.step_plan();
+  EXPECT_TRUE(has_stage(full, PlanStage::Gravity));
+  EXPECT_TRUE(has_stage(full, PlanStage::Damping));
+  EXPECT_TRUE(has_row(full, SpringRow::Soft));
+  EXPECT_TRUE(full.unconstrained_bodies);
+  // Springs only: nothing to relax (springs are solved once per sub-step), so no relax pass.
+  EXPECT_FALSE(has_stage(full, PlanStage::Relax));
+  EXPECT_EQ(scene.joints.size(), 20u);
+}
+
+TEST(StepPlan, IsRebuiltOnlyWhenTheContentChanges) {
+  WorldSettings s;
+  s.sleeping = false;
+  World world(s);
+  scenes::ChainOptions o;
+  o.links = 10;
+  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  world.step(1.0 / 60.0);
+  const std::uint64_t builds = world.step_plan().builds;
+  for (int i = 0; i < 10; ++i) world.step(1.0 / 60.0);
+  EXPECT_EQ(world.step_plan().builds, builds);
+  world.set_linear_velocity(scene.links[0][3], {1.0, 0.0, 0.0});  // state, not content
+  world.step(1.0 / 60.0);
+  EXPECT_EQ(world.step_plan().builds, builds);
+  world.destroy_joint(scene.joints.back());
+  EXPECT_EQ(world.step_plan().builds, builds + 1);
+  EXPECT_EQ(world.step_plan().rows_per_pass, 9u * 3);
+}
+
+// A world with nothing but resting bodies in zero gravity and no joints still moves them:
+// the plan keeps the integration, not the joint stages.
+TEST(StepPlan, BodiesWithoutJointsIntegrateWithoutJointStages) {
+  WorldSettings s;
+  s.gravity.setZero();
+  World world(s);
+  BodyDef d;
+  d.linear_velocity = {1.0, 0.0, 0.0};
+  const BodyId body = world.create_body(d);
+  const StepPlan& plan = world.step_plan();
+  EXPECT_FALSE(has_stage(plan, PlanStage::PrepareJoints));
+  EXPECT_FALSE(has_stage(plan, PlanStage::Solve));
+  EXPECT_FALSE(has_stage(plan, PlanStage::WarmStart));
+  EXPECT_FALSE(has_stage(plan, PlanStage::Relax));
+  for (int i = 0; i < 60; ++i) world.step(1.0 / 60.0);
+  EXPECT_NEAR(world.body(body).position.x(), 1.0, 1e-5);
+}
+
+}  // namespace
+}  // namespace softstep
