@@ -17,7 +17,7 @@ enum class PlanStage : std::uint8_t {
   PrepareJoints,       // anchors and softness coefficients (once per step)
   Gravity,             // per sub-step: some awake body feels gravity
   Damping,             // per sub-step: some awake body has linear or angular damping
-  SpinLimit,           // per sub-step: the bound on rotation per sub-step (always, with bodies)
+  SpinLimit,           // per sub-step: the bounds on rotation per sub-step and on speed (always)
   WarmStart,           // per sub-step: last sub-step's impulses applied
   ClearImpulses,       // per sub-step: warm starting off
   Solve,               // per sub-step: soft, biased pass
