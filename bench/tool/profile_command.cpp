@@ -169,9 +169,12 @@ int profile_command(Arguments& args) {
   const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
   const SolverLayout layout = world.solver_layout();
   const double ms = median(step_ms);
-  // Each sub-step solves every row `iterations` times and relaxes it `relax` times.
-  const double row_solves =
-      run.rows * settings.substeps * (settings.solve_iterations + settings.relax_iterations);
+  // Each sub-step solves every row `iterations` times and relaxes it `relax` times, unless
+  // the plan runs no relax pass (springs only: springs are not relaxed).
+  const std::vector<PlanStage>& planned = world.step_plan().stages;
+  const bool relaxed = std::find(planned.begin(), planned.end(), PlanStage::Relax) != planned.end();
+  const double row_solves = run.rows * settings.substeps *
+                            (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));
   std::array<double, kStageCount> stage_median{};
   for (int k = 0; k < kStageCount; ++k) {
     std::vector<double> v;
