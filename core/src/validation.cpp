@@ -112,12 +112,12 @@ void spring(std::string_view call, std::string_view field, const Spring& s) {
   non_negative(call, zeta_field, s.damping_ratio);
 }
 
-void linear_speed(std::string_view call, std::string_view field, const Eigen::Vector3d& velocity,
-                  double max_speed) {
-  if (velocity.norm() > max_speed) {
-    reject(call, field, format(velocity),
-           "its magnitude " + format(velocity.norm()) +
-               " m/s exceeds WorldSettings.max_linear_speed (" + format(max_speed) + " m/s)");
+void linear_speed(std::string_view call, std::string_view field, const std::string& value,
+                  const Eigen::Vector3d& velocity, double max_speed) {
+  if (!(velocity.norm() <= max_speed)) {
+    reject(call, field, value,
+           "the speed " + format(velocity.norm()) +
+               " m/s is beyond WorldSettings.max_linear_speed (" + format(max_speed) + " m/s)");
   }
 }
 
@@ -129,7 +129,8 @@ void body_def(std::string_view call, const BodyDef& def, double max_linear_speed
   finite(call, "BodyDef.position", def.position);
   unit_quaternion(call, "BodyDef.orientation", def.orientation);
   finite(call, "BodyDef.linear_velocity", def.linear_velocity);
-  linear_speed(call, "BodyDef.linear_velocity", def.linear_velocity, max_linear_speed);
+  linear_speed(call, "BodyDef.linear_velocity", format(def.linear_velocity), def.linear_velocity,
+               max_linear_speed);
   finite(call, "BodyDef.angular_velocity", def.angular_velocity);
   if (def.type == BodyType::Static &&
       (!def.linear_velocity.isZero(0.0) || !def.angular_velocity.isZero(0.0))) {

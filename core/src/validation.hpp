@@ -36,9 +36,10 @@ Quaternion unit_quaternion(std::string_view call, std::string_view field, const 
 void dynamic_mass(std::string_view call, std::string_view field, double mass);
 void inertia_tensor(std::string_view call, std::string_view field, const Eigen::Matrix3d& inertia);
 void spring(std::string_view call, std::string_view field, const Spring& spring);
-// |velocity| <= max_speed (WorldSettings.max_linear_speed), after finite().
-void linear_speed(std::string_view call, std::string_view field, const Eigen::Vector3d& velocity,
-                  double max_speed);
+// |velocity| <= max_speed (WorldSettings.max_linear_speed), after finite(). `value` is what
+// the caller was given (the velocity itself, or the impulse that would give it).
+void linear_speed(std::string_view call, std::string_view field, const std::string& value,
+                  const Eigen::Vector3d& velocity, double max_speed);
 void body_def(std::string_view call, const BodyDef& def, double max_linear_speed);
 void settings(std::string_view call, const WorldSettings& settings);
 

@@ -197,7 +197,8 @@ void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen:
   const std::uint32_t slot = body_slot(w, call, "body", id);
   validation::finite(call, "velocity", velocity);
   if (member == &BodySlot::linear_velocity) {
-    validation::linear_speed(call, "velocity", velocity, w.settings.max_linear_speed);
+    validation::linear_speed(call, "velocity", validation::format(velocity), velocity,
+                             w.settings.max_linear_speed);
   }
   if (w.bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
     validation::reject(call, "velocity", validation::format(velocity),
@@ -254,12 +255,8 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
                        "gives the body an angular velocity beyond +-" +
                            validation::format(validation::kMaxMagnitude) + " rad/s");
   }
-  if (!(v.norm() <= w.settings.max_linear_speed)) {
-    validation::reject("apply_impulse", "impulse", validation::format(impulse),
-                       "gives the body a speed of " + validation::format(v.norm()) +
-                           " m/s, beyond WorldSettings.max_linear_speed (" +
-                           validation::format(w.settings.max_linear_speed) + " m/s)");
-  }
+  validation::linear_speed("apply_impulse", "impulse", validation::format(impulse), v,
+                           w.settings.max_linear_speed);
   w.touch(slot);
   b.linear_velocity = v;
   b.angular_velocity = omega;
