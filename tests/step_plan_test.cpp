@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <functional>
 
 #include "scenes/chain_scene.hpp"
+#include "scenes/feature_zoo.hpp"
 
 namespace softstep {
 namespace {
@@ -20,75 +20,6 @@ bool has_row(const StepPlan& p, SpringRow row) {
                      [&](const PlanKernel& k) { return k.row == row; });
 }
 
-// Every joint kind the kernels have a variant for, in one world: rigid, soft and free ball
-// joints; distance rods, springs with min, max and both limits, ropes (free + max), a free
-// spring with a min limit. Links swing under `gravity` from a static ceiling, in chains so
-// that joints share bodies, colours and the overflow-free lanes.
-void build_feature_zoo(World& world, double damping) {
-  BodyDef ceiling_def;
-  ceiling_def.type = BodyType::Static;
-  const BodyId ceiling = world.create_body(ceiling_def);
-  const auto chain = [&](double z, const std::function<void(BodyId, BodyId, int)>& joint) {
-    BodyId previous = ceiling;
-    for (int i = 0; i < 12; ++i) {
-      BodyDef d;
-      d.position = {0.3 * (i + 1), 0.02 * i, z};
-      d.angular_velocity = {0.0, 0.0, 0.5};
-      d.linear_damping = damping;
-      const BodyId body = world.create_body(d);
-      joint(previous, body, i);
-      previous = body;
-    }
-  };
-  const auto ball = [&](Spring spring) {
-    return [&world, spring](BodyId a, BodyId b, int) {
-      BallJointDef j;
-      j.body_a = a;
-      j.body_b = b;
-      j.local_anchor_b = {-0.15, 0.0, 0.0};
-      j.local_anchor_a = {0.15, 0.0, 0.0};
-      j.spring = spring;
-      world.create_ball_joint(j);
-    };
-  };
-  chain(0.0, ball(Spring::rigid()));
-  chain(1.0, ball(Spring::soft(4.0, 0.3)));
-  chain(2.0, ball(Spring::free()));
-  chain(3.0, [&](BodyId a, BodyId b, int i) {
-    DistanceJointDef j;
-    j.body_a = a;
-    j.body_b = b;
-    j.rest_length = 0.3;
-    switch (i % 6) {
-      case 0:
-        j.spring = Spring::rigid();
-        break;
-      case 1:
-        j.spring = Spring::soft(3.0, 0.2);
-        j.min_length = 0.25;
-        break;
-      case 2:
-        j.spring = Spring::soft(3.0, 0.2);
-        j.max_length = 0.32;
-        break;
-      case 3:
-        j.spring = Spring::soft(2.0, 0.0);
-        j.min_length = 0.28;
-        j.max_length = 0.35;
-        break;
-      case 4:
-        j.spring = Spring::free();
-        j.max_length = 0.31;  // a rope
-        break;
-      default:
-        j.spring = Spring::free();
-        j.min_length = 0.29;
-        break;
-    }
-    world.create_distance_joint(j);
-  });
-}
-
 std::uint64_t run_zoo(bool specialize, SimdWidth width, const Eigen::Vector3d& gravity,
                       double damping, bool warm_start) {
   WorldSettings s;
@@ -97,7 +28,7 @@ std::uint64_t run_zoo(bool specialize, SimdWidth width, const Eigen::Vector3d& g
   s.gravity = gravity;
   s.warm_start = warm_start;
   World world(s);
-  build_feature_zoo(world, damping);
+  scenes::build_feature_zoo(world, damping);
   for (int i = 0; i < 120; ++i) world.step(1.0 / 60.0);
   EXPECT_GT(world.step_plan().awake_bodies, 0u) << "the zoo must still be moving";
   return world.state_hash();
@@ -125,7 +56,7 @@ TEST(StepPlan, SpecializedKernelsGiveTheGeneralKernelsTrajectoryBitForBit) {
 
 TEST(StepPlan, ZooRunsOneVariantPerSignature) {
   World world;
-  build_feature_zoo(world, 0.0);
+  scenes::build_feature_zoo(world, 0.0);
   const StepPlan& plan = world.step_plan();
   // ball: rigid, soft, free; distance: rod, soft+min, soft+max, soft+both, rope, free+min
   EXPECT_EQ(plan.kernels.size(), 9u);
