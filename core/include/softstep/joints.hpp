@@ -31,17 +31,35 @@ struct DistanceJointDef {
   Spring spring = Spring::rigid();
 };
 
-enum class JointType { Ball, Distance };
+// One value per registered joint type (core/src/joints/joint_registry.hpp).
+enum class JointType { Ball, Distance, Revolute, Prismatic, Weld };
+const char* joint_type_name(JointType type);  // "ball", "distance", "revolute", ...
 
 // What a joint did in the last sub-step and how far it is from satisfied now.
 struct JointReading {
-  // Impulse applied to body B during the last sub-step, N s, world frame (A got the
-  // opposite). Divided by the sub-step it is the joint force.
+  // Impulse applied to body B during the last sub-step by the linear rows, N s, world frame
+  // (A got the opposite). Divided by the sub-step it is the joint force.
   Eigen::Vector3d impulse = Eigen::Vector3d::Zero();
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N: impulse / sub-step
-  // Position error now, m: the anchor gap of a ball joint; for a distance joint, how far
-  // the length is outside [min, max], or from rest_length when rigid or sprung.
+  // The same for the angular rows (angular locks, and a hinge's limit, motor and spring):
+  // N m s and N m on B, world frame.
+  Eigen::Vector3d angular_impulse = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  // Position error now, m: the anchor gap of a ball, revolute or weld joint; for a distance
+  // joint, how far the length is outside [min, max], or from rest_length when rigid or
+  // sprung; for a prismatic joint, the anchor's distance from the slide axis.
   double error = 0.0;
+  // Orientation error now, rad: the angle between the hinge axes (revolute), or the angle of
+  // the relative rotation away from the held one (prismatic, weld).
+  double angular_error = 0.0;
+  // Revolute: the hinge angle, rad, unwrapped. Prismatic: the translation, m.
+  double position = 0.0;
+  // The axis rows' impulses in the last sub-step (revolute N m s, prismatic N s): the limit
+  // rows' sum (lower pushes towards a larger position, upper towards a smaller one), the
+  // motor, the spring.
+  double limit_impulse = 0.0;
+  double motor_impulse = 0.0;
+  double spring_impulse = 0.0;
 };
 
 }  // namespace softstep

@@ -11,6 +11,9 @@
 #include "softstep/errors.hpp"
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"
+#include "softstep/joints/prismatic.hpp"
+#include "softstep/joints/revolute.hpp"
+#include "softstep/joints/weld.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/step_plan.hpp"
 #include "softstep/world_settings.hpp"
@@ -94,8 +97,24 @@ class World {
   bool is_awake(BodyId id) const;
   std::size_t body_count() const;
 
-  JointId create_ball_joint(const BallJointDef& def);
-  JointId create_distance_joint(const DistanceJointDef& def);
+  // Any joint type: BallJointDef, DistanceJointDef, RevoluteJointDef, PrismaticJointDef,
+  // WeldJointDef. Every field is validated first (InvalidArgument names it); the joint wakes
+  // the islands of both bodies.
+  template <class Def>
+  JointId create_joint(const Def& def);
+  // The joint's definition as the world holds it (normalized axes, clamped lengths).
+  // Throws InvalidArgument when the joint is of another type.
+  template <class Def>
+  Def joint_def(JointId id) const;
+  // Changes a joint in place, keeping its id and its warm-start impulses: springs, limits,
+  // motors, anchors and frames. The bodies must stay the same. Validated like create_joint;
+  // wakes the island. A change that keeps the joint's features (a motor's speed, a spring's
+  // target) refreshes its lane without re-packing the world.
+  template <class Def>
+  void set_joint(JointId id, const Def& def);
+
+  JointId create_ball_joint(const BallJointDef& def);          // = create_joint(def)
+  JointId create_distance_joint(const DistanceJointDef& def);  // = create_joint(def)
   void destroy_joint(JointId id);
   bool is_valid(JointId id) const;
   JointType joint_type(JointId id) const;
