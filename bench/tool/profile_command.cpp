@@ -32,10 +32,6 @@ const std::string kProfileUsage =
 
 namespace {
 
-const char* joint_type_name(JointType type) {
-  return type == JointType::Ball ? "ball" : "distance";
-}
-
 // "rigid", "soft + min + max", "any (general)", ...
 std::string kernel_features(const PlanKernel& k) {
   if (k.row == SpringRow::Any) return "general (per-lane switches)";

@@ -28,6 +28,22 @@ SimdWidth resolve_width(std::string_view call, SimdWidth requested) {
 
 }  // namespace
 
+const char* joint_type_name(JointType type) {
+  switch (type) {
+    case JointType::Ball:
+      return "ball";
+    case JointType::Distance:
+      return "distance";
+    case JointType::Revolute:
+      return "revolute";
+    case JointType::Prismatic:
+      return "prismatic";
+    case JointType::Weld:
+      return "weld";
+  }
+  return "?";
+}
+
 // ---- lookups that reject unknown ids ------------------------------------------------------
 
 static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
