@@ -295,6 +295,15 @@ JointEnds check_joint_ends(const World::Impl& w, std::string_view call, BodyId a
     validation::reject(call, prefix + ".body_b", "BodyId{" + std::to_string(b.index) + "}",
                        "a joint needs two different bodies (body_a is the same body)");
   }
+  // Neither a static nor a kinematic body moves in response to a joint: between two of them
+  // a joint has nothing to solve, and would hold a permanent error.
+  const BodyType type_a = w.bodies[slot_a].type, type_b = w.bodies[slot_b].type;
+  if (type_a != BodyType::Dynamic && type_b != BodyType::Dynamic) {
+    validation::reject(call, prefix + ".body_b",
+                       "BodyId{" + std::to_string(b.index) + "} (" + type_name(type_b) + ")",
+                       std::string("a joint needs a dynamic body (body_a is ") +
+                           type_name(type_a) + ")");
+  }
   validation::finite(call, prefix + ".local_anchor_a", anchor_a);
   validation::finite(call, prefix + ".local_anchor_b", anchor_b);
   validation::spring(call, prefix + ".spring", spring);
