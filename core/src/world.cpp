@@ -197,8 +197,7 @@ void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen:
   const std::uint32_t slot = body_slot(w, call, "body", id);
   validation::finite(call, "velocity", velocity);
   if (member == &BodySlot::linear_velocity) {
-    validation::linear_speed(call, "velocity", validation::format(velocity), velocity,
-                             w.settings.max_linear_speed);
+    validation::linear_speed(call, "velocity", velocity, velocity, w.settings.max_linear_speed);
   }
   if (w.bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
     validation::reject(call, "velocity", validation::format(velocity),
@@ -255,8 +254,7 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
                        "gives the body an angular velocity beyond +-" +
                            validation::format(validation::kMaxMagnitude) + " rad/s");
   }
-  validation::linear_speed("apply_impulse", "impulse", validation::format(impulse), v,
-                           w.settings.max_linear_speed);
+  validation::linear_speed("apply_impulse", "impulse", impulse, v, w.settings.max_linear_speed);
   w.touch(slot);
   b.linear_velocity = v;
   b.angular_velocity = omega;
@@ -299,10 +297,10 @@ JointEnds check_joint_ends(const World::Impl& w, std::string_view call, BodyId a
   // a joint has nothing to solve, and would hold a permanent error.
   const BodyType type_a = w.bodies[slot_a].type, type_b = w.bodies[slot_b].type;
   if (type_a != BodyType::Dynamic && type_b != BodyType::Dynamic) {
-    validation::reject(call, prefix + ".body_b",
-                       "BodyId{" + std::to_string(b.index) + "} (" + type_name(type_b) + ")",
-                       std::string("a joint needs a dynamic body (body_a is ") +
-                           type_name(type_a) + ")");
+    validation::reject(
+        call, prefix + ".body_b",
+        "BodyId{" + std::to_string(b.index) + "} (" + type_name(type_b) + ")",
+        std::string("a joint needs a dynamic body (body_a is ") + type_name(type_a) + ")");
   }
   validation::finite(call, prefix + ".local_anchor_a", anchor_a);
   validation::finite(call, prefix + ".local_anchor_b", anchor_b);
