@@ -2,14 +2,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
+
+// Quaternion (unaligned on purpose: see eigen_types.hpp). A plain Eigen::Quaterniond converts
+// to and from it implicitly.
+#include "softstep/eigen_types.hpp"
 
 namespace softstep {
-
-// Orientation at the API boundary. Unaligned on purpose: Eigen over-aligns Quaterniond by
-// the instruction set (16 bytes with SSE, 32 with AVX), so a program built without -march
-// and this library built with it would disagree on the layout of every struct holding one.
-// A plain Eigen::Quaterniond converts to and from it implicitly.
-using Quaternion = Eigen::Quaternion<double, Eigen::DontAlign>;
 
 enum class BodyType {
   Static,     // never moves, infinite mass

@@ -53,8 +53,8 @@ struct SolveCapture {
   std::vector<Quaternion> orientation;    // at the step start
   // Velocities (linear then angular, world frame) after gravity and damping, before the warm
   // start, and after the last solve pass of the first sub-step (before positions move).
-  std::vector<Eigen::Matrix<double, 6, 1>> velocity_before_solve;
-  std::vector<Eigen::Matrix<double, 6, 1>> velocity_after_solve;
+  std::vector<Vector6> velocity_before_solve;
+  std::vector<Vector6> velocity_after_solve;
   // The masses the solver used (with the geometric-stiffness inertia, if on).
   std::vector<double> inverse_mass;              // 1/kg
   std::vector<Eigen::Matrix3d> inverse_inertia;  // world frame, 1/(kg m^2)
