@@ -195,6 +195,8 @@ void World::Impl::finalize_bodies(const solver::Share& share) {
     const simd::VelocityRecord& v = sb.velocity[s + 1];
     const simd::DeltaRecord& d = sb.delta[s + 1];
     b.position += Eigen::Vector3d(d.dp[0], d.dp[1], d.dp[2]);
+    b.step_moved2 = d.dp[0] * d.dp[0] + d.dp[1] * d.dp[1] + d.dp[2] * d.dp[2];
+    b.step_turned2 = d.dq[0] * d.dq[0] + d.dq[1] * d.dq[1] + d.dq[2] * d.dq[2];
     const Eigen::Quaterniond dq(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
     b.orientation = (dq * b.orientation).normalized();
     // A kinematic body keeps the velocity the user gave it, not its float copy.

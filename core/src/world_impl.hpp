@@ -32,7 +32,12 @@ struct BodySlot {
   std::vector<std::uint32_t> joints;  // slots of the joints attached to this body
   bool never_sleep = false;
   bool asleep = false;
-  double sleep_time = 0.0;   // s the body has stayed below the sleep speeds
+  double sleep_time = 0.0;  // s the body has stayed below the sleep speeds
+  // How far the last step moved the body: |displacement|^2 (m^2) and |rotation quaternion
+  // xyz|^2 (sin^2 of half the angle). A body that a joint's bounded correction is pulling
+  // moves while the relax pass leaves its velocity near zero: the sleep test reads both.
+  float step_moved2 = 0.0f;
+  float step_turned2 = 0.0f;
   std::uint32_t island = 0;  // while asleep: index into World::Impl::islands
 };
 
@@ -115,8 +120,7 @@ class LaneSolver {
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
   virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
-                                    bool gravity, bool damping,
-                                    const solver::Share& share) = 0;
+                                    bool gravity, bool damping, const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
 
