@@ -43,6 +43,7 @@ std::uint64_t World::state_hash() const {
   h.value(s.substeps);
   h.value(s.solve_iterations);
   h.value(s.max_linear_speed);
+  h.value(s.max_rotation_per_substep);
   h.value(s.relax_iterations);
   h.value(s.warm_start);
   h.value(s.rigid_hertz);

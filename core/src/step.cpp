@@ -35,6 +35,9 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
       simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
   ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
   ctx.max_linear_speed = static_cast<float>(s.max_linear_speed);
+  // Rounded to float before dividing, as the constant it replaced was: pi/4 gives the same
+  // bound bit for bit.
+  ctx.max_angular_speed = static_cast<float>(s.max_rotation_per_substep) / h;
   return ctx;
 }
 

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace softstep::validation {
 
@@ -190,6 +191,12 @@ void settings(std::string_view call, const WorldSettings& s) {
   if (!(s.max_linear_speed >= kMinPositive && s.max_linear_speed <= kMaxSpeedLimit)) {
     reject(call, "WorldSettings.max_linear_speed", format(s.max_linear_speed),
            "must be in [" + format(kMinPositive) + ", " + format(kMaxSpeedLimit) + "] m/s");
+  }
+  if (!(s.max_rotation_per_substep >= kMinPositive &&
+        s.max_rotation_per_substep <= 0.5 * std::numbers::pi)) {
+    reject(call, "WorldSettings.max_rotation_per_substep", format(s.max_rotation_per_substep),
+           "must be in [" + format(kMinPositive) + ", " + format(0.5 * std::numbers::pi) +
+               "] rad (a quarter turn)");
   }
   non_negative(call, "WorldSettings.rigid_damping_ratio", s.rigid_damping_ratio);
   positive(call, "WorldSettings.max_correction_speed", s.max_correction_speed);

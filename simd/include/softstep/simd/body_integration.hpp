@@ -17,8 +17,6 @@ struct alignas(32) ForceRecord {
   float unused[3];
 };
 
-inline constexpr float kMaxRotationPerSubstep = 0.25f * 3.14159265f;  // rad
-
 // Scales (x, y, z) down to length `limit` where it is longer; lanes within it are untouched,
 // bit for bit.
 template <class L>
@@ -54,10 +52,11 @@ SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceR
       }
     }
   }
-  // A body may turn at most a quarter turn per sub-step. Beyond it the first-order rotation
-  // update is meaningless and a joint anchored off the centre swings its anchor anywhere: links
-  // with tiny inertia and chains at 1/15 s steps exploded (energy x 1e7) before this bound.
-  clamp_norm(v.r[3], v.r[4], v.r[5], L(kMaxRotationPerSubstep / h));
+  // A body may turn at most max_rotation_per_substep per sub-step (default an eighth of a
+  // turn). Beyond it the first-order rotation update is meaningless and a joint anchored off
+  // the centre swings its anchor anywhere: links with tiny inertia and chains at 1/15 s steps
+  // exploded (energy x 1e7) before this bound.
+  clamp_norm(v.r[3], v.r[4], v.r[5], L(ctx.max_angular_speed));
   // The speed bound keeps the kernels' float products in range (validation.cpp).
   clamp_norm(v.r[0], v.r[1], v.r[2], L(ctx.max_linear_speed));
   scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));
