@@ -30,8 +30,8 @@ SimdWidth resolve_width(std::string_view call, SimdWidth requested) {
 
 // ---- lookups that reject unknown ids ------------------------------------------------------
 
-static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
-                               BodyId id) {
+std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
+                        BodyId id) {
   if (id.index >= w.bodies.size() || !w.bodies[id.index].alive ||
       w.bodies[id.index].generation != id.generation) {
     validation::reject(
@@ -42,7 +42,7 @@ static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std:
   return id.index;
 }
 
-static std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id) {
+std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id) {
   if (id.index >= w.joints.size() || !w.joints[id.index].alive ||
       w.joints[id.index].generation != id.generation) {
     validation::reject(
@@ -143,6 +143,7 @@ BodyId World::create_body(const BodyDef& def) {
   b.angular_damping = def.angular_damping;
   b.joints.clear();
   b.never_sleep = def.never_sleep;
+  b.user_data = def.user_data;
   b.asleep = false;
   b.sleep_time = 0.0;
   ++w.body_count;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "softstep/graph_coloring/graph_coloring.hpp"
@@ -31,6 +32,7 @@ struct BodySlot {
   double angular_damping = 0.0;
   std::vector<std::uint32_t> joints;  // slots of the joints attached to this body
   bool never_sleep = false;
+  std::uint64_t user_data = 0;  // the caller's; never read, validated or hashed
   bool asleep = false;
   double sleep_time = 0.0;  // s the body has stayed below the sleep speeds
   // How far the last step moved the body: |displacement|^2 (m^2) and |rotation quaternion
@@ -53,6 +55,7 @@ struct JointSlot {
   double rest_length = 0.0;  // distance joints: clamped into [min, max]
   double min_length = 0.0;
   double max_length = 0.0;
+  std::uint64_t user_data = 0;  // the caller's; never read, validated or hashed
   // Accumulated impulses kept here while the joint is not in the solver's lanes (between a
   // topology change and the next pack). Ball: xyz. Distance: x = spring/rod, y = lower, z = upper.
   Eigen::Vector3f impulse = Eigen::Vector3f::Zero();
@@ -123,6 +126,11 @@ class LaneSolver {
                                     bool gravity, bool damping, const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
+
+// The slot of a live body or joint; rejects unknown and destroyed ids naming `field` (world.cpp).
+std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
+                        BodyId id);
+std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id);
 
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
 SimdWidth best_simd_width();

@@ -31,6 +31,9 @@ struct BodyDef {
   double linear_damping = 0.0;   // 1/s, >= 0: v' = -c v
   double angular_damping = 0.0;  // 1/s, >= 0
   bool never_sleep = false;      // keeps the body, and every island it joins, awake
+  // The caller's own value (an integer, or a pointer as std::uintptr_t), kept with the body
+  // and never read, validated or hashed by softstep (World::user_data).
+  std::uint64_t user_data = 0;
 };
 
 // Inertia of a solid sphere, kg m^2 (a helper for the common case).

@@ -102,6 +102,18 @@ class World {
   JointReading joint_reading(JointId id) const;
   std::size_t joint_count() const;
 
+  // Every live body or joint in slot order (the ids create_* returned): to walk the world,
+  // e.g. to copy poses into an engine's objects. Allocates the vector each call.
+  std::vector<BodyId> body_ids() const;
+  std::vector<JointId> joint_ids() const;
+  // The caller's own value per body or joint: an integer, or a pointer as std::uintptr_t. Never
+  // read, validated or hashed by softstep (setting it changes nothing the world simulates and
+  // not state_hash); 0 until set, a body's from BodyDef::user_data. Unknown ids are rejected.
+  void set_user_data(BodyId id, std::uint64_t value);
+  std::uint64_t user_data(BodyId id) const;
+  void set_user_data(JointId id, std::uint64_t value);
+  std::uint64_t user_data(JointId id) const;
+
   // Advances the world by dt seconds (> 0, finite) in settings().substeps sub-steps.
   void step(double dt);
 
