@@ -56,6 +56,7 @@ int step_threads(World::Impl& w) {
   constexpr long kProbeEvery = 64;
   static const int machine_cores = std::max(1, omp_get_num_procs());
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
+  if (w.settings.fixed_threads) return allowed;  // the user's count, not the policy's
   // Sleeping bodies and joints are no work.
   const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3;
   if (allowed <= 1 || work < kMinWorkToShare) return 1;
@@ -66,6 +67,29 @@ int step_threads(World::Impl& w) {
   const bool all_faster = p.ms[1] < p.ms[0];
   const bool probe = p.steps % kProbeEvery == 0;
   return all_faster != probe ? allowed : 1;
+}
+
+// A step's threads on the host's job system: workers 1 .. n-1 are enqueued, the calling
+// thread is worker 0, and finish waits for each. Every worker runs the same stages on the same
+// Share as under OpenMP, so the result is the same bit for bit.
+template <class Run>
+void run_on_host_tasks(const TaskCallbacks& tasks, int threads, Run& run) {
+  solver::StepBarrier barrier(threads);
+  struct Job {
+    Run* run;
+    solver::StepBarrier* barrier;
+    int threads;
+  } job{&run, &barrier, threads};
+  const TaskCallbacks::Task task = [](int worker, void* context) {
+    Job& j = *static_cast<Job*>(context);
+    (*j.run)(solver::Share{worker, j.threads, nullptr, j.barrier});
+  };
+  std::vector<void*> handles;
+  for (int worker = 1; worker < threads; ++worker) {
+    handles.push_back(tasks.enqueue(task, worker, &job, tasks.user_context));
+  }
+  run(solver::Share{0, threads, nullptr, &barrier});
+  for (void* handle : handles) tasks.finish(handle, tasks.user_context);
 }
 
 void record_step_time(World::Impl& w, int threads, double ms) {
@@ -330,6 +354,8 @@ void World::step(double dt) {
   }
   if (threads == 1) {
     run(solver::Share{});
+  } else if (w.tasks.enqueue != nullptr) {
+    run_on_host_tasks(w.tasks, threads, run);
   } else {
     // The team may come out smaller than asked (OMP_THREAD_LIMIT, nested regions): the
     // barrier is sized by the first thread to know, before anyone uses it.
@@ -356,6 +382,16 @@ void World::step(double dt) {
   w.last_substep = h;
   w.joints_without_history = false;
   w.update_sleep(dt);
+}
+
+void World::set_task_callbacks(const TaskCallbacks& callbacks) {
+  if ((callbacks.enqueue == nullptr) != (callbacks.finish == nullptr)) {
+    validation::reject(
+        "set_task_callbacks",
+        callbacks.enqueue == nullptr ? "TaskCallbacks.enqueue" : "TaskCallbacks.finish", "nullptr",
+        "enqueue and finish are given together (both nullptr: OpenMP)");
+  }
+  impl_->tasks = callbacks;
 }
 
 void World::set_profiling(bool on) {

@@ -163,6 +163,7 @@ struct World::Impl {
     double ms[2] = {0.0, 0.0};  // recent step time with one thread [0] and with all [1]; 0 unknown
     long steps = 0;
   } thread_policy;
+  TaskCallbacks tasks;  // the host's job system; enqueue == nullptr: OpenMP
   bool profiling = false;
   StepProfile profile;  // of the last step, while profiling
   bool capturing = false;

@@ -1,6 +1,6 @@
 // The world: bodies, joints and the Soft Step solver. Not thread-safe: one thread calls it
-// at a time; step() itself uses WorldSettings::threads threads (OpenMP), with results that
-// do not depend on how many.
+// at a time; step() itself uses WorldSettings::threads threads (OpenMP, or the host's job
+// system through set_task_callbacks), with results that do not depend on how many.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +13,7 @@
 #include "softstep/joints.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/step_plan.hpp"
+#include "softstep/task_callbacks.hpp"
 #include "softstep/world_settings.hpp"
 
 namespace softstep {
@@ -75,6 +76,10 @@ class World {
 
   const WorldSettings& settings() const;
   void set_settings(const WorldSettings& settings);
+  // Steps on more than one thread run their workers through these callbacks instead of
+  // OpenMP (see task_callbacks.hpp for what the host must guarantee); both nullptr: OpenMP
+  // again. Rejected when only one of enqueue and finish is given.
+  void set_task_callbacks(const TaskCallbacks& callbacks);
 
   BodyId create_body(const BodyDef& def);
   // Destroys the body and every joint attached to it.

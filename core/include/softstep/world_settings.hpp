@@ -29,6 +29,10 @@ struct WorldSettings {
   // or all, whichever ran recent steps faster (see README). Results are bit-identical for
   // any count.
   int threads = 0;
+  // true: every step runs on exactly `threads` threads (0: all of the machine's cores),
+  // however small the step and however recent steps ran; for a host that has set its cores
+  // aside for the physics, or to measure. false: the adaptive choice above.
+  bool fixed_threads = false;
   bool warm_start = true;  // start each sub-step from the previous sub-step's impulses
   // Rigid rows are solved as a stiff spring (and relaxed with none). Its frequency is capped
   // at a quarter of the sub-step rate, so it cannot overshoot: Hz, > 0.
