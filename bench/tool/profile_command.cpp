@@ -58,6 +58,7 @@ void print_plan(const StepPlan& plan) {
   };
   effect(plan.gravity, "gravity");
   effect(plan.damping, "damping");
+  effect(plan.forces, "forces");
   effect(plan.springs, "springs");
   effect(plan.limits, "limits");
   effect(plan.warm_start, "warm start");
@@ -86,6 +87,7 @@ JsonObject plan_json(const StepPlan& plan) {
   JsonObject effects;
   effects.add("gravity", plan.gravity);
   effects.add("damping", plan.damping);
+  effects.add("forces", plan.forces);
   effects.add("springs", plan.springs);
   effects.add("limits", plan.limits);
   effects.add("warm_start", plan.warm_start);

@@ -71,6 +71,8 @@ std::uint64_t World::state_hash() const {
     h.value(b.gravity_scale);
     h.value(b.linear_damping);
     h.value(b.angular_damping);
+    h.matrix(b.force);
+    h.matrix(b.torque);
     for (std::uint32_t j : b.joints) h.value(j);
     h.value(b.never_sleep);
     h.value(b.asleep);

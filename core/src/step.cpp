@@ -186,6 +186,7 @@ void World::Impl::refresh_inertia(const solver::Share& share) {
 
 void World::Impl::prepare_bodies(float h, const solver::Share& share) {
   SolverBodies& sb = solver_bodies;
+  const bool forces = plan.forces;
   const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
   for (std::size_t index = mine.begin; index < mine.end; ++index) {
     const std::uint32_t s = sb.movable[index];
@@ -201,11 +202,18 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
     simd::ForceRecord& f = sb.force[i];
     if (b.type == BodyType::Dynamic) {
       m = mass_record(b, extra_inertia_on ? extra_inertia[s] : 0.0);
-      const Eigen::Vector3d g = settings.gravity * b.gravity_scale;
+      Eigen::Vector3d g = settings.gravity * b.gravity_scale;
+      Eigen::Vector3d alpha = Eigen::Vector3d::Zero();
+      if (forces) {  // the applied force and torque, with the body's own inertia
+        g += b.force / b.mass;
+        const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
+        alpha = r * (b.inverse_inertia * (r.transpose() * b.torque));
+      }
       f = {{static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())},
            static_cast<float>(1.0 / (1.0 + h * b.linear_damping)),
            static_cast<float>(1.0 / (1.0 + h * b.angular_damping)),
-           {0, 0, 0}};
+           {static_cast<float>(alpha.x()), static_cast<float>(alpha.y()),
+            static_cast<float>(alpha.z())}};
     } else {
       m = simd::MassRecord{};
       f = simd::ForceRecord{{0, 0, 0}, 1.0f, 1.0f, {0, 0, 0}};
@@ -265,7 +273,9 @@ void World::step(double dt) {
   std::array<bool, kPlanStageCount> runs{};
   for (PlanStage p : w.plan.stages) runs[static_cast<std::size_t>(p)] = true;
   const auto planned = [&](PlanStage p) { return runs[static_cast<std::size_t>(p)]; };
-  const bool gravity = planned(PlanStage::Gravity);
+  // Applied forces ride on the gravity term (force / mass), torques on their own.
+  const bool torque = planned(PlanStage::Forces);
+  const bool gravity = planned(PlanStage::Gravity) || torque;
   const bool damping = planned(PlanStage::Damping);
   const bool capturing = w.capturing;
   if (capturing) w.capture_step_start(h, rigid_solve_hertz(s, h));
@@ -309,7 +319,7 @@ void World::step(double dt) {
             solver::team_barrier(share);
             w.refresh_inertia(share);  // integrate_velocities reads no mass record
           }
-          solver.integrate_velocities(w.solver_bodies, ctx, gravity, damping, share);
+          solver.integrate_velocities(w.solver_bodies, ctx, gravity, damping, torque, share);
           solver::team_barrier(share);
         });
       }
@@ -381,6 +391,7 @@ void World::step(double dt) {
   }
   w.last_substep = h;
   w.joints_without_history = false;
+  w.clear_forces();
   w.update_sleep(dt);
 }
 

@@ -141,6 +141,8 @@ BodyId World::create_body(const BodyDef& def) {
   b.gravity_scale = def.gravity_scale;
   b.linear_damping = def.linear_damping;
   b.angular_damping = def.angular_damping;
+  b.force.setZero();
+  b.torque.setZero();
   b.joints.clear();
   b.never_sleep = def.never_sleep;
   b.user_data = def.user_data;

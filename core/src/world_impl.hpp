@@ -30,6 +30,10 @@ struct BodySlot {
   double gravity_scale = 1.0;
   double linear_damping = 0.0;
   double angular_damping = 0.0;
+  // Applied with apply_force / apply_torque for the next step, world frame, about the centre
+  // of mass: N and N m. Cleared after that step.
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   std::vector<std::uint32_t> joints;  // slots of the joints attached to this body
   bool never_sleep = false;
   std::uint64_t user_data = 0;  // the caller's; never read, validated or hashed
@@ -123,7 +127,8 @@ class LaneSolver {
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
   virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
-                                    bool gravity, bool damping, const solver::Share& share) = 0;
+                                    bool gravity, bool damping, bool torque,
+                                    const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
 
@@ -170,6 +175,13 @@ struct World::Impl {
   SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
   StepPlan plan;
   bool plan_built = false;  // false after any change of content or settings
+
+  // Bodies given a force or torque for the next step (may repeat a slot); cleared by the step.
+  std::vector<std::uint32_t> forced_bodies;
+  // Sets StepPlan::forces and its stage in a built plan without rebuilding it: forces come
+  // and go every step in a game, the rest of the content does not.
+  void plan_forces(bool on);
+  void clear_forces();  // after a step
 
   // Sleeping islands: the body slots of each, in slot order; emptied when woken.
   std::vector<std::vector<std::uint32_t>> islands;

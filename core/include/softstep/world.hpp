@@ -93,9 +93,16 @@ class World {
   void set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia);
   // Adds impulse (N s, world frame) at world_point to a dynamic body's velocities.
   void apply_impulse(BodyId id, const Eigen::Vector3d& impulse, const Eigen::Vector3d& world_point);
+  // Adds a force (N, world frame) acting at world_point to a dynamic body for the next step:
+  // applied in each of its sub-steps (with the torque (world_point - centre) x force), then
+  // cleared. Forces and torques given before a step add up. Wakes the body's island. A scene
+  // with none pays nothing: the plan runs the Forces stage only while some body has one.
+  void apply_force(BodyId id, const Eigen::Vector3d& force, const Eigen::Vector3d& world_point);
+  // Adds a torque (N m, world frame) to a dynamic body for the next step, as apply_force.
+  void apply_torque(BodyId id, const Eigen::Vector3d& torque);
   // False while the body's island sleeps (static bodies: always false). Setting a velocity,
-  // a pose or the mass, applying an impulse, or adding or removing a joint on the body wakes
-  // its island.
+  // a pose or the mass, applying an impulse, a force or a torque, or adding or removing a joint
+  // on the body wakes its island.
   bool is_awake(BodyId id) const;
   std::size_t body_count() const;
 

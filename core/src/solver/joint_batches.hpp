@@ -85,7 +85,7 @@ struct VariantKernels {
 };
 
 // Body integration over blocks of 8 records (each entry of `blocks` is a block's first
-// record), one function per combination of forces present: [gravity][damping].
+// record), one function per combination of forces present: [gravity][damping][torque].
 using IntegrateVelocities = void (*)(simd::VelocityRecord*, const simd::ForceRecord*,
                                      const std::int32_t* blocks, std::size_t count,
                                      const simd::SubstepContext&);
@@ -99,7 +99,7 @@ template <int W>
 struct KernelTable {
   std::array<VariantKernels<simd::BallJointGroup<W>>, kBallVariants.size()> ball;
   std::array<VariantKernels<simd::DistanceJointGroup<W>>, kDistanceVariants.size()> distance;
-  IntegrateVelocities integrate_velocities[2][2];
+  IntegrateVelocities integrate_velocities[2][2][2];
   IntegratePositions integrate_positions;
 };
 
