@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
 
+#include "expect_invalid_argument.hpp"
 #include "softstep/simd/softness.hpp"
 #include "softstep/softstep.hpp"
 
@@ -105,16 +105,7 @@ TEST(Spring, KernelSoftnessMatchesApiCoefficients) {
 // Issue 17, bug 5: the helpers returned NaN or a rigid spring for input no spring has; they
 // reject it like every other call, naming the argument and the value.
 TEST(Spring, HelpersRejectInputNoSpringHas) {
-  const auto rejects = [](const std::function<void()>& call, const std::string& field,
-                          const std::string& value) {
-    try {
-      call();
-      ADD_FAILURE() << "accepted; expected rejection of " << field;
-    } catch (const InvalidArgument& e) {
-      EXPECT_EQ(e.field(), field) << e.what();
-      EXPECT_NE(std::string(e.what()).find(value), std::string::npos) << e.what();
-    }
-  };
+  const auto rejects = expect_invalid_argument;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   rejects([] { Spring::from_stiffness(-5.0, 0.0, 1.0); }, "k", "-5");
   rejects([] { Spring::from_stiffness(5.0, -1.0, 1.0); }, "c", "-1");

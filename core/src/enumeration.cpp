@@ -4,24 +4,25 @@
 
 namespace softstep {
 
-std::vector<BodyId> World::body_ids() const {
-  const Impl& w = *impl_;
-  std::vector<BodyId> ids;
-  ids.reserve(w.body_count);
-  for (std::uint32_t s = 0; s < w.bodies.size(); ++s) {
-    if (w.bodies[s].alive) ids.push_back({s, w.bodies[s].generation});
+namespace {
+// The live slots' ids, in slot order.
+template <class Id, class Slot>
+std::vector<Id> live_ids(const std::vector<Slot>& slots, std::size_t live) {
+  std::vector<Id> ids;
+  ids.reserve(live);
+  for (std::uint32_t s = 0; s < slots.size(); ++s) {
+    if (slots[s].alive) ids.push_back({s, slots[s].generation});
   }
   return ids;
 }
+}  // namespace
+
+std::vector<BodyId> World::body_ids() const {
+  return live_ids<BodyId>(impl_->bodies, impl_->body_count);
+}
 
 std::vector<JointId> World::joint_ids() const {
-  const Impl& w = *impl_;
-  std::vector<JointId> ids;
-  ids.reserve(w.joint_count);
-  for (std::uint32_t s = 0; s < w.joints.size(); ++s) {
-    if (w.joints[s].alive) ids.push_back({s, w.joints[s].generation});
-  }
-  return ids;
+  return live_ids<JointId>(impl_->joints, impl_->joint_count);
 }
 
 void World::set_user_data(BodyId id, std::uint64_t value) {
