@@ -442,3 +442,30 @@ TEST(Validation, StateHashSeesEveryKindOfChange) {
 
 }  // namespace
 }  // namespace softstep
+
+namespace softstep {
+namespace {
+
+// World::reserve makes room and nothing else: the same calls give the same world, and a count
+// no id can address is rejected.
+TEST(Validation, ReserveChangesNothingButRoom) {
+  const auto build = [](bool reserved) {
+    World world;
+    if (reserved) world.reserve(1000, 10);
+    BodyDef def;
+    for (int i = 0; i < 100; ++i) {
+      def.position.x() = i;
+      world.create_body(def);
+    }
+    world.step(1.0 / 60.0);
+    return world.state_hash();
+  };
+  EXPECT_EQ(build(true), build(false));
+  expect_rejected([](Fixture& f) { f.world.reserve(std::size_t{1} << 40, 0); }, "bodies",
+                  "1099511627776");
+  expect_rejected([](Fixture& f) { f.world.reserve(0, std::size_t{1} << 33); }, "joints",
+                  "8589934592");
+}
+
+}  // namespace
+}  // namespace softstep

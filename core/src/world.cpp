@@ -136,6 +136,18 @@ void World::set_settings(const WorldSettings& settings) {
   w.content_changed();
 }
 
+void World::reserve(std::size_t bodies, std::size_t joints) {
+  constexpr std::size_t kMaxSlots = 0xFFFFFFFEu;  // 0xFFFFFFFF is the id of nothing
+  if (bodies > kMaxSlots) {
+    validation::reject("reserve", "bodies", std::to_string(bodies), "must be <= 4294967294");
+  }
+  if (joints > kMaxSlots) {
+    validation::reject("reserve", "joints", std::to_string(joints), "must be <= 4294967294");
+  }
+  impl_->bodies.reserve(bodies);
+  impl_->joints.reserve(joints);
+}
+
 // ---- bodies -------------------------------------------------------------------------------
 
 BodyId World::create_body(const BodyDef& def) {

@@ -84,6 +84,11 @@ class World {
   // again. Rejected when only one of enqueue and finish is given.
   void set_task_callbacks(const TaskCallbacks& callbacks);
 
+  // Room for this many bodies and joints in all, made at once: creating them then moves no
+  // storage (a world grown body by body copies its slots each time they double). Changes
+  // nothing else; at most 2^32 - 2 of each.
+  void reserve(std::size_t bodies, std::size_t joints);
+
   BodyId create_body(const BodyDef& def);
   // Destroys the body and every joint attached to it.
   void destroy_body(BodyId id);
