@@ -19,21 +19,23 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 
 // A rigid row is solved as a spring of rigid_hertz (60 Hz, capped at 1/(4 h): 60 Hz at 4
-// sub-steps of 1/60 s) and relaxed without bias. Held against a steady acceleration alpha it
-// sags alpha / omega_r^2; a one-sided limit row, speculative while inside, lets through at
-// most one sub-step's acceleration, alpha h^2, before it acts. The bounds below take twice
-// the sum, for the Gauss-Seidel coupling with the joint's other rows.
+// sub-steps of 1/60 s) and relaxed without bias. Carrying a steady load L on its effective
+// mass m_eff (alpha = L / m_eff) it sags alpha / omega_r^2; a one-sided limit row,
+// speculative while inside, lets through at most one sub-step's acceleration, alpha h^2,
+// before it acts. The bounds below take twice the sum, for the Gauss-Seidel coupling with
+// the joint's other rows. An angular row's m_eff is the inertia about the body's centre
+// along the axis (1 / (a . I^-1 a) with A static), not about the hinge.
 constexpr double kOmegaRigid = 2.0 * kPi * 60.0;
 double rigid_row_bound(double alpha, double h) {
   return 2.0 * (alpha * h * h + alpha / (kOmegaRigid * kOmegaRigid));
 }
 
-// A rod 0.1 x 1.0 x 0.1 m of 2 kg, its inertia turned off the hinge's axes.
+// A bar 0.3 x 1.0 x 0.2 m of 2 kg, its inertia turned off the hinge's axes.
 Eigen::Matrix3d rod_inertia_off_axis() {
   const Eigen::Matrix3d turn =
       (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()))
           .toRotationMatrix();
-  return test::turned(test::box_inertia(2.0, {0.1, 1.0, 0.1}), turn);
+  return test::turned(test::box_inertia(2.0, {0.3, 1.0, 0.2}), turn);
 }
 
 struct SwingResult {
@@ -107,7 +109,8 @@ TEST(Revolute, PendulumSwingsOnlyAboutItsAxisWithThePhysicalPendulumPeriod) {
   // Off-axis motion: a hundredth of what the ball joint lets through.
   EXPECT_LT(hinge.off_axis, 0.01 * ball.off_axis) << "ball joint " << ball.off_axis;
   EXPECT_LT(hinge.out_of_plane, 0.01 * std::max(ball.out_of_plane, 1e-3));
-  // Anchor gap: the point rows hold m g (1 + theta0^2) against their rigid-row sag.
+  // Anchor gap: the point rows hold m g (1 + theta0^2) along the rod, where their effective
+  // mass is m (the rod points through the anchor), against their rigid-row sag.
   EXPECT_LT(hinge.gap, rigid_row_bound(kG * 1.01, 1.0 / 480.0));
 }
 
@@ -203,8 +206,9 @@ INSTANTIATE_TEST_SUITE_P(
     [](const ::testing::TestParamInfo<LimitCase>& p) { return std::string(p.param.name); });
 
 // Gravity, not a motor: an arm hinged at one end starts horizontal and falls onto its lower
-// limit (-0.5 rad), hitting it at speed, then rests on it. Pressing acceleration
-// alpha = m g d cos(0.5) / I_pivot.
+// limit (-0.5 rad), hitting it at speed, then rests on it. Resting, the limit row carries the
+// weight's torque about the hinge, m g d cos(0.5) (the point rows carry the weight), on the
+// arm's inertia about its centre: alpha = m g d cos(0.5) / I_zz = 51 rad/s^2.
 TEST(Revolute, ArmFallingOntoItsLimitStopsAtIt) {
   WorldSettings s;
   s.sleeping = false;  // the limit impulse is read while the arm rests on the limit
@@ -221,7 +225,7 @@ TEST(Revolute, ArmFallingOntoItsLimitStopsAtIt) {
   j.frame_b = frames.b;
   j.limit = {true, -0.5, 0.5};
   const JointId joint = world.create_joint(j);
-  const double alpha = m * kG * d * std::cos(0.5) / (inertia(2, 2) + m * d * d);
+  const double alpha = m * kG * d * std::cos(0.5) / inertia(2, 2);
   double lowest = 0.0;
   for (int i = 0; i < 120; ++i) {
     world.step(kDt);
@@ -280,7 +284,7 @@ TEST_P(AngularTalkIdentity, SoftHingeSpringIsTheImplicitEulerAngularSpring) {
   // here (anchor at the centre), but the identity is about the soft row alone.
   s.geometric_stiffness = false;
   World world(s);
-  const double inertia = 0.2, theta0 = 0.01;  // rad: small, so sin(theta) ~ theta to 2e-5
+  const double inertia = 0.2, theta0 = 0.01;  // rad
   const BodyId ground = test::static_body(world);
   const BodyId body = test::dynamic_body(
       world, Eigen::Vector3d::Zero(), 4.0, Eigen::Vector3d(0.05, 0.08, inertia).asDiagonal(),
@@ -308,12 +312,14 @@ TEST_P(AngularTalkIdentity, SoftHingeSpringIsTheImplicitEulerAngularSpring) {
     worst_w = std::max(worst_w, std::abs(world.body(body).angular_velocity.z() - w));
   }
   // Float rounding: the solver works in float (6e-8 relative) on each step's change from
-  // the step start, which the world adds to its double pose, and implicit Euler is
-  // contractive, so rounding does not pile up: 400 sub-steps of a few roundings each stay
-  // far below 1e-5 of the amplitude. The angle's sin(theta) ~ theta differs by theta^2 / 6
-  // = 1.7e-5 relative: the 2e-5 allows for a solver that measures the angle by its sine.
-  EXPECT_LT(worst_theta, 2e-5 * theta0);
-  EXPECT_LT(worst_w, 2e-5 * theta0 * omega0);
+  // the step start (a delta rotation from identity, so small angles keep their relative
+  // precision), which the world adds to its double angle; implicit Euler is contractive, so
+  // rounding does not pile up: even 400 sub-steps of a few roundings each, added up
+  // linearly, stay below 1e-5 of the amplitude. The row's C must be the angle itself: a
+  // solver using its sine (a nonlinear spring, slower by theta0^2 / 16) drifts 1e-4 of the
+  // amplitude in phase over these 21 radians and fails, as it should.
+  EXPECT_LT(worst_theta, 1e-5 * theta0);
+  EXPECT_LT(worst_w, 1e-5 * theta0 * omega0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Springs, AngularTalkIdentity,
