@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "scenes/joint_at.hpp"
+
 namespace softstep::scenes {
 
 HingeChainScene build_hinge_chain(World& world, const HingeChainOptions& o) {
@@ -34,22 +36,13 @@ HingeChainScene build_hinge_chain(World& world, const HingeChainOptions& o) {
       scene.links[static_cast<std::size_t>(c)].push_back(body);
       // The hinge halfway between the centres (at the anchor for the first link).
       const Eigen::Vector3d point = origin + Eigen::Vector3d(l * (i + 0.5), 0.0, 0.0);
-      const JointFrames frames = frames_at(world, previous, body, point, Eigen::Vector3d::UnitZ());
       if (o.weld) {
-        WeldJointDef j;
-        j.body_a = previous;
-        j.body_b = body;
-        j.frame_a = frames.a;
-        j.frame_b = frames.b;
+        auto j = joint_at<WeldJointDef>(world, previous, body, point, Eigen::Vector3d::UnitZ());
         j.linear = o.weld_linear;
         j.angular = o.weld_angular;
         scene.joints.push_back(world.create_joint(j));
       } else {
-        RevoluteJointDef j;
-        j.body_a = previous;
-        j.body_b = body;
-        j.frame_a = frames.a;
-        j.frame_b = frames.b;
+        auto j = joint_at<RevoluteJointDef>(world, previous, body, point, Eigen::Vector3d::UnitZ());
         j.limit = o.limit;
         j.motor = o.motor;
         j.spring = o.spring;

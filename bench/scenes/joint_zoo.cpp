@@ -4,23 +4,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "scenes/joint_at.hpp"
+
 namespace softstep::scenes {
 namespace {
 
 constexpr double kSpacing = 0.3;  // m, centre to centre along a chain
-
-// A revolute or prismatic joint of the given kind at `point`, about or along `axis` (world).
-template <class Def>
-Def axis_joint(World& world, BodyId a, BodyId b, const Eigen::Vector3d& point,
-               const Eigen::Vector3d& axis) {
-  const JointFrames frames = frames_at(world, a, b, point, axis);
-  Def def;
-  def.body_a = a;
-  def.body_b = b;
-  def.frame_a = frames.a;
-  def.frame_b = frames.b;
-  return def;
-}
 
 JointId create(World& world, ZooJoint kind, BodyId a, BodyId b, const Eigen::Vector3d& point,
                int k) {
@@ -36,7 +25,7 @@ JointId create(World& world, ZooJoint kind, BodyId a, BodyId b, const Eigen::Vec
     case ZooJoint::RevoluteMotor:
     case ZooJoint::RevoluteSpring:
     case ZooJoint::RevoluteAll: {
-      auto j = axis_joint<RevoluteJointDef>(world, a, b, point, hinge);
+      auto j = joint_at<RevoluteJointDef>(world, a, b, point, hinge);
       const bool all = kind == ZooJoint::RevoluteAll;
       if (kind == ZooJoint::RevoluteLimit) j.limit = {true, -0.4, 0.3};
       if (all) j.limit = {true, -170.0 * std::numbers::pi / 180.0, 170.0 * std::numbers::pi / 180.0};
@@ -49,7 +38,7 @@ JointId create(World& world, ZooJoint kind, BodyId a, BodyId b, const Eigen::Vec
     case ZooJoint::PrismaticMotor:
     case ZooJoint::PrismaticSpring:
     case ZooJoint::PrismaticAll: {
-      auto j = axis_joint<PrismaticJointDef>(world, a, b, point, slide);
+      auto j = joint_at<PrismaticJointDef>(world, a, b, point, slide);
       const bool all = kind == ZooJoint::PrismaticAll;
       if (kind == ZooJoint::PrismaticLimit || all) j.limit = {true, -0.05, 0.04};
       if (kind == ZooJoint::PrismaticMotor || all) j.motor = {true, 0.2, 5.0};
@@ -57,7 +46,7 @@ JointId create(World& world, ZooJoint kind, BodyId a, BodyId b, const Eigen::Vec
       return world.create_joint(j);
     }
     default: {
-      auto j = axis_joint<WeldJointDef>(world, a, b, point, Eigen::Vector3d::UnitZ());
+      auto j = joint_at<WeldJointDef>(world, a, b, point, Eigen::Vector3d::UnitZ());
       if (kind == ZooJoint::WeldSoftAngular || kind == ZooJoint::WeldSoft)
         j.angular = Spring::soft(5.0, 0.1);
       if (kind == ZooJoint::WeldSoftLinear || kind == ZooJoint::WeldSoft)

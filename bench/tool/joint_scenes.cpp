@@ -18,6 +18,24 @@ const char* const kJointSceneUsage =
     "      H 1 kg cubes per column, each on a vertical slider to the one below, on springs of\n"
     "      4 Hz (or --hertz) within -0.2 .. +0.1 m of their 0.5 m spacing.";
 
+namespace {
+
+// The worst stretch ratio over the paths static start k, bodies[k]...
+std::function<double()> worst_stretch(const World& world, std::vector<BodyId> starts,
+                                      std::vector<std::vector<BodyId>> bodies, double rest) {
+  return [&world, starts = std::move(starts), bodies = std::move(bodies), rest] {
+    double worst = 0.0;
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+      std::vector<BodyId> path{starts[k]};
+      path.insert(path.end(), bodies[k].begin(), bodies[k].end());
+      worst = std::max(worst, metrics::stretch_ratio(positions(world, path), rest));
+    }
+    return worst;
+  };
+}
+
+}  // namespace
+
 bool is_joint_scene(const std::string& scene) {
   return scene == "hinge-chain" || scene == "prismatic-stack";
 }
@@ -67,15 +85,7 @@ SceneRun build_joint_scene(World& world, const SceneChoice& c) {
     }
     run.description += o.spring.spring.is_free() ? ", no spring" : ", " + c.spring_text;
     run.reach = o.link_spacing * o.links;
-    run.stretch_ratio = [&world, built, rest = run.reach] {
-      double worst = 0.0;
-      for (std::size_t k = 0; k < built.links.size(); ++k) {
-        std::vector<BodyId> path{built.anchors[k]};
-        path.insert(path.end(), built.links[k].begin(), built.links[k].end());
-        worst = std::max(worst, metrics::stretch_ratio(positions(world, path), rest));
-      }
-      return worst;
-    };
+    run.stretch_ratio = worst_stretch(world, built.anchors, built.links, run.reach);
   } else {
     const scenes::PrismaticStackOptions& o = c.stack;
     const scenes::PrismaticStackScene built = scenes::build_prismatic_stack(world, o);
@@ -85,15 +95,7 @@ SceneRun build_joint_scene(World& world, const SceneChoice& c) {
                       std::to_string(o.height) + ", sliders on springs of " +
                       format_number(o.spring.spring.hertz) + " Hz with limits";
     run.reach = o.spacing * o.height;
-    run.stretch_ratio = [&world, built, rest = run.reach] {
-      double worst = 0.0;
-      for (std::size_t k = 0; k < built.columns.size(); ++k) {
-        std::vector<BodyId> path{built.grounds[k]};
-        path.insert(path.end(), built.columns[k].begin(), built.columns[k].end());
-        worst = std::max(worst, metrics::stretch_ratio(positions(world, path), rest));
-      }
-      return worst;
-    };
+    run.stretch_ratio = worst_stretch(world, built.grounds, built.columns, run.reach);
   }
   // Rows as the plan counts them: each type's parts plus the limit, motor and spring rows
   // its joints switch on.

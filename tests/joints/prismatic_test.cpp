@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "joints/joint_test_support.hpp"
+#include "scenes/joint_at.hpp"
 
 namespace softstep {
 namespace {
@@ -42,12 +43,8 @@ Slider make_slider(const Eigen::Vector3d& axis, const Eigen::Vector3d& anchor_of
   const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   s.body = test::dynamic_body(s.world, {0.0, 1.0, 0.0}, 2.0,
                               test::turned(test::box_inertia(2.0, {0.4, 0.2, 0.3}), turn));
-  const JointFrames frames = frames_at(s.world, s.ground, s.body,
-                                       Eigen::Vector3d(0.0, 1.0, 0.0) + anchor_offset, s.axis);
-  s.def.body_a = s.ground;
-  s.def.body_b = s.body;
-  s.def.frame_a = frames.a;
-  s.def.frame_b = frames.b;
+  s.def = scenes::joint_at<PrismaticJointDef>(s.world, s.ground, s.body,
+                                              Eigen::Vector3d(0.0, 1.0, 0.0) + anchor_offset, s.axis);
   s.def.limit = limit;
   s.def.motor = motor;
   s.joint = s.world.create_joint(s.def);
@@ -187,12 +184,7 @@ TEST(Prismatic, SetJointMovesTheSpringTargetAndWakes) {
   World world(settings);
   const BodyId ground = test::static_body(world);
   const BodyId body = test::dynamic_body(world, {0, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
-  const JointFrames frames = frames_at(world, ground, body, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX());
-  PrismaticJointDef j;
-  j.body_a = ground;
-  j.body_b = body;
-  j.frame_a = frames.a;
-  j.frame_b = frames.b;
+  auto j = scenes::joint_at<PrismaticJointDef>(world, ground, body, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX());
   j.spring = {Spring::soft(3.0, 1.0), 0.0};
   const JointId id = world.create_joint(j);
   for (int i = 0; i < 60; ++i) world.step(kDt);

@@ -10,6 +10,7 @@
 #include <ostream>
 
 #include "joints/joint_test_support.hpp"
+#include "scenes/joint_at.hpp"
 
 namespace softstep {
 namespace {
@@ -129,12 +130,8 @@ Wheel make_wheel(const AxisLimit& limit, const AngularMotor& motor, double inert
   w.ground = test::static_body(w.world);
   w.wheel = test::dynamic_body(w.world, {1.0, 2.0, 0.0}, 3.0,
                                Eigen::Vector3d(0.07, 0.05, inertia).asDiagonal());
-  const JointFrames frames =
-      frames_at(w.world, w.ground, w.wheel, {1.0, 2.0, 0.0}, Eigen::Vector3d::UnitZ());
-  w.def.body_a = w.ground;
-  w.def.body_b = w.wheel;
-  w.def.frame_a = frames.a;
-  w.def.frame_b = frames.b;
+  w.def = scenes::joint_at<RevoluteJointDef>(w.world, w.ground, w.wheel, {1.0, 2.0, 0.0},
+                                             Eigen::Vector3d::UnitZ());
   w.def.limit = limit;
   w.def.motor = motor;
   w.joint = w.world.create_joint(w.def);
@@ -217,12 +214,7 @@ TEST(Revolute, ArmFallingOntoItsLimitStopsAtIt) {
   const Eigen::Matrix3d inertia = test::box_inertia(m, {1.0, 0.1, 0.1});
   const BodyId ground = test::static_body(world);
   const BodyId arm = test::dynamic_body(world, {d, 0.0, 0.0}, m, inertia);
-  const JointFrames frames = frames_at(world, ground, arm, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
-  RevoluteJointDef j;
-  j.body_a = ground;
-  j.body_b = arm;
-  j.frame_a = frames.a;
-  j.frame_b = frames.b;
+  auto j = scenes::joint_at<RevoluteJointDef>(world, ground, arm, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
   j.limit = {true, -0.5, 0.5};
   const JointId joint = world.create_joint(j);
   const double alpha = m * kG * d * std::cos(0.5) / inertia(2, 2);

@@ -8,6 +8,7 @@
 #include <ostream>
 
 #include "joints/joint_test_support.hpp"
+#include "scenes/joint_at.hpp"
 
 namespace softstep {
 namespace {
@@ -24,12 +25,7 @@ TEST(Weld, RigidWeldHoldsACantileverLikeARigidBeam) {
   const Eigen::Matrix3d inertia = test::box_inertia(m, {length, 0.1, 0.1});
   const BodyId wall = test::static_body(world);
   const BodyId beam = test::dynamic_body(world, {length / 2, 0.0, 0.0}, m, inertia);
-  const JointFrames frames = frames_at(world, wall, beam, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
-  WeldJointDef j;
-  j.body_a = wall;
-  j.body_b = beam;
-  j.frame_a = frames.a;
-  j.frame_b = frames.b;
+  auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
   const JointId joint = world.create_joint(j);
   const Eigen::Vector3d tip_local(length / 2, 0.0, 0.0);
   double worst = 0.0;
@@ -83,13 +79,7 @@ TEST_P(SoftWeld, AngularHalfOscillatesAtItsFrequencyAboutEveryAxis) {
   const BodyId ground = test::static_body(world);
   const BodyId body = test::dynamic_body(world, {0.0, 1.0, 0.0}, 3.0,
                                          Eigen::Vector3d(0.02, 0.05, 0.1).asDiagonal());
-  const JointFrames frames =
-      frames_at(world, ground, body, {0.0, 1.0, 0.0}, Eigen::Vector3d(1.0, 1.0, 1.0));
-  WeldJointDef j;
-  j.body_a = ground;
-  j.body_b = body;
-  j.frame_a = frames.a;
-  j.frame_b = frames.b;
+  auto j = scenes::joint_at<WeldJointDef>(world, ground, body, {0.0, 1.0, 0.0}, Eigen::Vector3d(1.0, 1.0, 1.0));
   j.angular = Spring::soft(c.hertz, 0.0);
   world.create_joint(j);
   const Eigen::Vector3d axis = Eigen::Vector3d::Unit(c.axis);
@@ -145,12 +135,7 @@ TEST(Weld, SetJointSoftensTheWeldAndWakes) {
   World world;
   const BodyId wall = test::static_body(world);
   const BodyId beam = test::dynamic_body(world, {0.5, 0.0, 0.0}, 2.0, test::box_inertia(2.0, {1.0, 0.1, 0.1}));
-  const JointFrames frames = frames_at(world, wall, beam, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
-  WeldJointDef j;
-  j.body_a = wall;
-  j.body_b = beam;
-  j.frame_a = frames.a;
-  j.frame_b = frames.b;
+  auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
   const JointId id = world.create_joint(j);
   for (int i = 0; i < 60; ++i) world.step(kDt);
   ASSERT_FALSE(world.is_awake(beam));
