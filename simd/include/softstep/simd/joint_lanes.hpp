@@ -29,8 +29,9 @@ struct JointFeatures {
 };
 inline constexpr JointFeatures kGeneralKernel{};
 
+// The lanes every two-body constraint starts with: who it is, its bodies, and its anchors.
 template <int W>
-struct alignas(32) JointLanes {
+struct alignas(32) AnchorLanes {
   std::uint32_t id[W];  // the caller's id for the constraint in this lane, kPaddingLane if none
   std::int32_t body_a[W];
   std::int32_t body_b[W];
@@ -38,6 +39,12 @@ struct alignas(32) JointLanes {
   float r_a[3][W];           // anchor A - centre of mass A, m
   float r_b[3][W];           // anchor B - centre of mass B, m
   float center_delta[3][W];  // centre B - centre A, m (from double positions: precise far out)
+};
+
+// A spring's frequency per lane and the row coefficients prepared from it once per step
+// (prepare_row_coefficients): what a row that may be rigid, soft or free per lane solves with.
+template <int W>
+struct alignas(32) SoftRowLanes {
   // Spring, constant while the joint lives: hertz +inf = rigid, 0 = free.
   float hertz[W];
   float zeta[W];
@@ -50,8 +57,12 @@ struct alignas(32) JointLanes {
   float relax_scale[W];  // 1 for rigid rows, 0 for springs (springs are not relaxed)
 };
 
+// The ball and distance joints: anchors and one spring for all their rows.
+template <int W>
+struct alignas(32) JointLanes : AnchorLanes<W>, SoftRowLanes<W> {};
+
 template <class L, JointFeatures F = kGeneralKernel, int W>
-SOFTSTEP_INLINE void prepare_row_coefficients(JointLanes<W>& g, const SubstepContext& ctx) {
+SOFTSTEP_INLINE void prepare_row_coefficients(SoftRowLanes<W>& g, const SubstepContext& ctx) {
   constexpr float kInf = std::numeric_limits<float>::infinity();
   if constexpr (F.row == RowKind::Rigid) {
     store_lanes(g.bias_rate, L(ctx.rigid.bias_rate));
@@ -103,7 +114,7 @@ struct JointBodies {
 };
 
 template <class L>
-SOFTSTEP_INLINE JointBodies<L> gather_joint(const JointLanes<kWidth<L>>& g,
+SOFTSTEP_INLINE JointBodies<L> gather_joint(const AnchorLanes<kWidth<L>>& g,
                                             const BodyArrays& bodies) {
   JointBodies<L> j{gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_a),
                    gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_b),
@@ -117,19 +128,33 @@ SOFTSTEP_INLINE JointBodies<L> gather_joint(const JointLanes<kWidth<L>>& g,
 }
 
 template <class L>
-SOFTSTEP_INLINE void scatter_joint(const JointLanes<kWidth<L>>& g, const BodyArrays& bodies,
+SOFTSTEP_INLINE void scatter_joint(const AnchorLanes<kWidth<L>>& g, const BodyArrays& bodies,
                                    const JointBodies<L>& j) {
   scatter_velocity(bodies.velocity, g.body_a, j.a);
   scatter_velocity(bodies.velocity, g.body_b, j.b);
 }
 
+// Impulse p on B at arm_b from its centre, -p on A at arm_a from its centre.
+template <class L>
+SOFTSTEP_INLINE void apply_impulse_at(JointBodies<L>& j, const Vec3<L>& p, const Vec3<L>& arm_a,
+                                      const Vec3<L>& arm_b) {
+  j.a.v = mul_add(L(0.0f) - j.a.inv_mass, p, j.a.v);
+  j.a.w = j.a.w - j.a.inv_inertia * cross(arm_a, p);
+  j.b.v = mul_add(j.b.inv_mass, p, j.b.v);
+  j.b.w = j.b.w + j.b.inv_inertia * cross(arm_b, p);
+}
+
 // Impulse p on B at its anchor, -p on A at its anchor.
 template <class L>
 SOFTSTEP_INLINE void apply_impulse(JointBodies<L>& j, const Vec3<L>& p) {
-  j.a.v = mul_add(L(0.0f) - j.a.inv_mass, p, j.a.v);
-  j.a.w = j.a.w - j.a.inv_inertia * cross(j.r_a, p);
-  j.b.v = mul_add(j.b.inv_mass, p, j.b.v);
-  j.b.w = j.b.w + j.b.inv_inertia * cross(j.r_b, p);
+  apply_impulse_at(j, p, j.r_a, j.r_b);
+}
+
+// Angular impulse t on B, -t on A (N m s): what an angular row applies.
+template <class L>
+SOFTSTEP_INLINE void apply_angular_impulse(JointBodies<L>& j, const Vec3<L>& t) {
+  j.a.w = j.a.w - j.a.inv_inertia * t;
+  j.b.w = j.b.w + j.b.inv_inertia * t;
 }
 
 // Velocity of anchor B relative to anchor A: J v of the three point rows.
