@@ -52,7 +52,8 @@ void World::Impl::capture_before_solve() {
 void World::Impl::capture_solved() {
   copy_velocities(solver_bodies, capture.velocity_after_solve);
   for (std::size_t k = 0; k < capture.joints.size(); ++k) {
-    capture.impulse[k] = lane_solver->impulse(capture.joints[k].index).cast<double>();
+    const std::array<float, kMaxJointImpulses> p = lane_solver->impulses(capture.joints[k].index);
+    capture.impulse[k] = Eigen::Vector3d(p[0], p[1], p[2]);
   }
 }
 

@@ -3,41 +3,14 @@
 #include <cstring>
 #include <type_traits>
 
+#include "state_hasher.hpp"
 #include "world_impl.hpp"
 
 namespace softstep {
 
-namespace {
-
-class Fnv1a {
- public:
-  void bytes(const void* data, std::size_t n) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < n; ++i) {
-      hash_ ^= p[i];
-      hash_ *= 0x100000001b3ull;
-    }
-  }
-  template <class T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes(&v, sizeof v);
-  }
-  template <class Derived>
-  void matrix(const Eigen::MatrixBase<Derived>& m) {
-    for (Eigen::Index i = 0; i < m.size(); ++i) value(m.derived().data()[i]);
-  }
-  std::uint64_t get() const { return hash_; }
-
- private:
-  std::uint64_t hash_ = 0xcbf29ce484222325ull;
-};
-
-}  // namespace
-
 std::uint64_t World::state_hash() const {
   const Impl& w = *impl_;
-  Fnv1a h;
+  StateHasher h;
   const WorldSettings& s = w.settings;
   h.matrix(s.gravity);
   h.value(s.substeps);
@@ -86,13 +59,13 @@ std::uint64_t World::state_hash() const {
     h.value(j.body_b);
     h.matrix(j.local_anchor_a);
     h.matrix(j.local_anchor_b);
-    h.value(j.spring.hertz);
-    h.value(j.spring.damping_ratio);
-    h.value(j.rest_length);
-    h.value(j.min_length);
-    h.value(j.max_length);
-    h.matrix(w.joints_packed && w.lane_solver->in_lanes(slot) ? w.lane_solver->impulse(slot)
-                                                              : j.impulse);
+    const std::array<float, kMaxJointImpulses> impulse =
+        w.joints_packed && w.lane_solver->in_lanes(slot) ? w.lane_solver->impulses(slot)
+                                                         : j.impulse;
+    JointKinds::with(j.type, [&]<class Kind>() {
+      Kind::hash(h, j);
+      for (int k = 0; k < Kind::kImpulses; ++k) h.value(impulse[k]);
+    });
   }
   for (std::uint32_t f : w.free_bodies) h.value(f);
   for (std::uint32_t f : w.free_joints) h.value(f);

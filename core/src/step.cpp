@@ -267,7 +267,7 @@ void World::step(double dt) {
         w.prepare_bodies(h, share);
         solver::team_barrier(share);
         if (planned(PlanStage::PrepareJoints)) {
-          solver.prepare(w.joints, w.bodies, ctx, share);
+          solver.prepare(w.joints, w.bodies, arrays, ctx, share);
           solver::team_barrier(share);
         }
       });
@@ -289,7 +289,7 @@ void World::step(double dt) {
         solver::team_barrier(share);  // the warm start writes the velocities just copied
       }
       if (planned(PlanStage::WarmStart)) {
-        stage(Stage::WarmStart, [&] { solver.warm_start(arrays, share); });
+        stage(Stage::WarmStart, [&] { solver.warm_start(arrays, ctx, share); });
       } else if (planned(PlanStage::ClearImpulses)) {
         stage(Stage::WarmStart, [&] {
           solver.clear_impulses(share);

@@ -7,24 +7,6 @@
 
 namespace softstep {
 
-namespace {
-
-SpringRow public_row(simd::RowKind row) {
-  switch (row) {
-    case simd::RowKind::Any:
-      return SpringRow::Any;
-    case simd::RowKind::Rigid:
-      return SpringRow::Rigid;
-    case simd::RowKind::Soft:
-      return SpringRow::Soft;
-    case simd::RowKind::Free:
-      return SpringRow::Free;
-  }
-  return SpringRow::Any;
-}
-
-}  // namespace
-
 void World::Impl::build_plan() {
   if (!joints_packed || !bodies_listed) thread_policy = {};  // new content: measure afresh
   if (!joints_packed) {
@@ -54,20 +36,22 @@ void World::Impl::build_plan() {
     p.unconstrained_bodies |= b.joints.empty();
   }
   for (const KernelUse& u : lane_solver->uses()) {
-    p.kernels.push_back(
-        {u.type, public_row(u.features.row), u.type == JointType::Distance && u.features.lower,
-         u.type == JointType::Distance && u.features.upper, u.rows_per_joint, u.batches, u.joints});
-    p.rows_per_pass += std::uint64_t(u.rows_per_joint) * u.joints;
+    PlanKernel k = u.plan;
+    k.batches = u.batches;
+    k.joints = u.joints;
+    p.rows_per_pass += std::uint64_t(k.rows_per_joint) * k.joints;
+    p.kernels.push_back(std::move(k));
   }
   // The general kernel's joints say per lane; look at them to tell the effects.
   for (std::uint32_t j = 0; j < joints.size(); ++j) {
     const JointSlot& slot = joints[j];
     if (!slot.alive || !lane_solver->in_lanes(j)) continue;
-    const bool rigid = slot.spring.is_rigid();
-    p.springs |= !rigid && !slot.spring.is_free();
-    p.limits |=
-        slot.type == JointType::Distance && !rigid &&
-        (slot.min_length > 0.0 || slot.max_length < std::numeric_limits<double>::infinity());
+    JointKinds::with(slot.type, [&]<class Kind>() {
+      const JointEffects e = Kind::effects(slot);
+      p.springs |= e.springs;
+      p.limits |= e.limits;
+      p.motors |= e.motors;
+    });
   }
   const bool joints_awake = !p.kernels.empty();
   p.warm_start = joints_awake && settings.warm_start;

@@ -46,8 +46,9 @@ const char* joint_type_name(JointType type) {
 
 // ---- lookups that reject unknown ids ------------------------------------------------------
 
-static std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
-                               BodyId id) {
+std::uint32_t World::Impl::live_body(std::string_view call, std::string_view field,
+                                     BodyId id) const {
+  const World::Impl& w = *this;
   if (id.index >= w.bodies.size() || !w.bodies[id.index].alive ||
       w.bodies[id.index].generation != id.generation) {
     validation::reject(
@@ -168,7 +169,7 @@ BodyId World::create_body(const BodyDef& def) {
 
 void World::destroy_body(BodyId id) {
   Impl& w = *impl_;
-  const std::uint32_t slot = body_slot(w, "destroy_body", "body", id);
+  const std::uint32_t slot = w.live_body("destroy_body", "body", id);
   w.touch(slot);  // the rest of its island may have leant on it
   const std::vector<std::uint32_t> attached = w.bodies[slot].joints;
   for (std::uint32_t j : attached) destroy_joint({j, w.joints[j].generation});
@@ -188,20 +189,20 @@ bool World::is_valid(BodyId id) const {
 }
 
 BodyState World::body(BodyId id) const {
-  const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
+  const BodySlot& b = impl_->bodies[impl_->live_body("body", "body", id)];
   return {b.type, b.position, b.orientation,   b.linear_velocity, b.angular_velocity,
           b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping};
 }
 
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {
-  const std::uint32_t slot = body_slot(*impl_, "set_position", "body", id);
+  const std::uint32_t slot = impl_->live_body("set_position", "body", id);
   validation::finite("set_position", "position", position);
   impl_->touch(slot);
   impl_->bodies[slot].position = position;
 }
 
 void World::set_orientation(BodyId id, const Quaternion& orientation) {
-  const std::uint32_t slot = body_slot(*impl_, "set_orientation", "body", id);
+  const std::uint32_t slot = impl_->live_body("set_orientation", "body", id);
   const Quaternion q = validation::unit_quaternion("set_orientation", "orientation", orientation);
   impl_->touch(slot);
   impl_->bodies[slot].orientation = q;
@@ -210,7 +211,7 @@ void World::set_orientation(BodyId id, const Quaternion& orientation) {
 namespace {
 void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen::Vector3d& velocity,
                   Eigen::Vector3d BodySlot::*member) {
-  const std::uint32_t slot = body_slot(w, call, "body", id);
+  const std::uint32_t slot = w.live_body(call, "body", id);
   validation::finite(call, "velocity", velocity);
   if (member == &BodySlot::linear_velocity) {
     validation::linear_speed(call, "velocity", validation::format(velocity), velocity,
@@ -234,7 +235,7 @@ void World::set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity) {
 }
 
 void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia) {
-  const std::uint32_t slot = body_slot(*impl_, "set_mass_properties", "body", id);
+  const std::uint32_t slot = impl_->live_body("set_mass_properties", "body", id);
   BodySlot& b = impl_->bodies[slot];
   if (b.type != BodyType::Dynamic) {
     validation::reject("set_mass_properties", "body", type_name(b.type),
@@ -252,7 +253,7 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
 void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
                           const Eigen::Vector3d& world_point) {
   Impl& w = *impl_;
-  const std::uint32_t slot = body_slot(w, "apply_impulse", "body", id);
+  const std::uint32_t slot = w.live_body("apply_impulse", "body", id);
   if (w.bodies[slot].type != BodyType::Dynamic) {
     validation::reject("apply_impulse", "body", type_name(w.bodies[slot].type),
                        "only a dynamic body responds to an impulse");
@@ -279,7 +280,7 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
 }
 
 bool World::is_awake(BodyId id) const {
-  const BodySlot& b = impl_->bodies[body_slot(*impl_, "is_awake", "body", id)];
+  const BodySlot& b = impl_->bodies[impl_->live_body("is_awake", "body", id)];
   return b.type != BodyType::Static && !b.asleep;
 }
 
@@ -288,38 +289,15 @@ std::size_t World::body_count() const {
 }
 
 Eigen::Vector3d World::local_point(BodyId id, const Eigen::Vector3d& world_point) const {
-  const BodySlot& b = impl_->bodies[body_slot(*impl_, "local_point", "body", id)];
+  const BodySlot& b = impl_->bodies[impl_->live_body("local_point", "body", id)];
   validation::finite("local_point", "world_point", world_point);
   return b.orientation.conjugate() * (world_point - b.position);
 }
 
 // ---- joints -------------------------------------------------------------------------------
+// The lifecycle every type shares; what a type is lives in its kind (joints/*_joint.cpp).
 
-namespace {
-
-struct JointEnds {
-  std::uint32_t a, b;
-};
-
-JointEnds check_joint_ends(const World::Impl& w, std::string_view call, BodyId a, BodyId b,
-                           const Eigen::Vector3d& anchor_a, const Eigen::Vector3d& anchor_b,
-                           const Spring& spring, std::string_view def) {
-  const std::string prefix(def);
-  const std::uint32_t slot_a = body_slot(w, call, prefix + ".body_a", a);
-  const std::uint32_t slot_b = body_slot(w, call, prefix + ".body_b", b);
-  if (slot_a == slot_b) {
-    validation::reject(call, prefix + ".body_b", "BodyId{" + std::to_string(b.index) + "}",
-                       "a joint needs two different bodies (body_a is the same body)");
-  }
-  validation::finite(call, prefix + ".local_anchor_a", anchor_a);
-  validation::finite(call, prefix + ".local_anchor_b", anchor_b);
-  validation::spring(call, prefix + ".spring", spring);
-  return {slot_a, slot_b};
-}
-
-}  // namespace
-
-static JointId add_joint(World::Impl& w, JointSlot&& joint) {
+JointId add_joint(World::Impl& w, JointSlot&& joint) {
   const std::uint32_t slot = take_slot(w.joints, w.free_joints);
   // A joint to a sleeping island wakes it (one end may be awake and moving).
   w.touch(joint.body_a);
@@ -327,7 +305,7 @@ static JointId add_joint(World::Impl& w, JointSlot&& joint) {
   w.unpack_joints();
   joint.generation = w.joints[slot].generation;
   joint.alive = true;
-  joint.impulse.setZero();
+  joint.impulse.fill(0.0f);
   w.joints[slot] = std::move(joint);
   w.joints_without_history = true;
   const JointSlot& j = w.joints[slot];
@@ -342,47 +320,31 @@ static JointId add_joint(World::Impl& w, JointSlot&& joint) {
   return {slot, j.generation};
 }
 
-JointId World::create_ball_joint(const BallJointDef& def) {
-  Impl& w = *impl_;
-  const JointEnds ends =
-      check_joint_ends(w, "create_ball_joint", def.body_a, def.body_b, def.local_anchor_a,
-                       def.local_anchor_b, def.spring, "BallJointDef");
-  JointSlot j;
-  j.type = JointType::Ball;
-  j.body_a = ends.a;
-  j.body_b = ends.b;
-  j.local_anchor_a = def.local_anchor_a;
-  j.local_anchor_b = def.local_anchor_b;
-  j.spring = def.spring;
-  return add_joint(w, std::move(j));
+void replace_joint(World::Impl& w, std::uint32_t slot, JointSlot&& joint) {
+  JointSlot& j = w.joints[slot];
+  w.touch(j.body_a);
+  w.touch(j.body_b);
+  joint.generation = j.generation;
+  joint.alive = true;
+  joint.angle = j.angle;
+  const bool packed = w.joints_packed && w.lane_solver->in_lanes(slot);
+  joint.impulse = packed ? w.lane_solver->impulses(slot) : j.impulse;
+  j = std::move(joint);
+  // Same kernel and signature: only this lane changes. Otherwise the world re-packs.
+  if (!packed || !w.lane_solver->refresh(slot, w.joints, w.settings.specialize)) {
+    w.unpack_joints();
+  }
+  w.plan_built = false;
 }
 
-JointId World::create_distance_joint(const DistanceJointDef& def) {
-  Impl& w = *impl_;
-  const char* call = "create_distance_joint";
-  const JointEnds ends = check_joint_ends(w, call, def.body_a, def.body_b, def.local_anchor_a,
-                                          def.local_anchor_b, def.spring, "DistanceJointDef");
-  validation::non_negative(call, "DistanceJointDef.rest_length", def.rest_length);
-  validation::non_negative(call, "DistanceJointDef.min_length", def.min_length);
-  if (std::isnan(def.max_length) || def.max_length < def.min_length ||
-      (def.max_length > validation::kMaxMagnitude &&
-       def.max_length != std::numeric_limits<double>::infinity())) {
-    validation::reject(call, "DistanceJointDef.max_length", validation::format(def.max_length),
-                       "must be >= min_length (" + validation::format(def.min_length) +
-                           ") and <= " + validation::format(validation::kMaxMagnitude) +
-                           "; +infinity for no upper limit");
+const JointSlot& joint_of_type(const World::Impl& w, std::string_view call, JointId id,
+                               JointType type) {
+  const JointSlot& j = w.joints[joint_slot(w, call, id)];
+  if (j.type != type) {
+    validation::reject(call, "joint", std::string("a ") + joint_type_name(j.type) + " joint",
+                       std::string("is not a ") + joint_type_name(type) + " joint");
   }
-  JointSlot j;
-  j.type = JointType::Distance;
-  j.body_a = ends.a;
-  j.body_b = ends.b;
-  j.local_anchor_a = def.local_anchor_a;
-  j.local_anchor_b = def.local_anchor_b;
-  j.spring = def.spring;
-  j.min_length = def.min_length;
-  j.max_length = def.max_length;
-  j.rest_length = std::clamp(def.rest_length, def.min_length, def.max_length);
-  return add_joint(w, std::move(j));
+  return j;
 }
 
 void World::destroy_joint(JointId id) {
@@ -399,7 +361,7 @@ void World::destroy_joint(JointId id) {
   w.coloring.remove(slot);
   j.alive = false;
   ++j.generation;
-  j.impulse.setZero();
+  j.impulse.fill(0.0f);
   w.free_joints.push_back(slot);
   --w.joint_count;
 }
@@ -421,66 +383,16 @@ std::size_t World::joint_count() const {
 JointReading World::joint_reading(JointId id) const {
   const Impl& w = *impl_;
   const JointSlot& j = w.joints[joint_slot(w, "joint_reading", id)];
-  const BodySlot& a = w.bodies[j.body_a];
-  const BodySlot& b = w.bodies[j.body_b];
-  const Eigen::Vector3d anchor_a = a.position + a.orientation * j.local_anchor_a;
-  const Eigen::Vector3d anchor_b = b.position + b.orientation * j.local_anchor_b;
-  const Eigen::Vector3d d = anchor_b - anchor_a;
-  const Eigen::Vector3f stored = w.joints_packed && w.lane_solver->in_lanes(id.index)
-                                     ? w.lane_solver->impulse(id.index)
-                                     : j.impulse;
+  const std::array<float, kMaxJointImpulses> impulse =
+      w.joints_packed && w.lane_solver->in_lanes(id.index) ? w.lane_solver->impulses(id.index)
+                                                           : j.impulse;
   JointReading r;
-  if (j.type == JointType::Ball) {
-    r.impulse = stored.cast<double>();
-    r.error = d.norm();
-  } else {
-    const double length = d.norm();
-    const Eigen::Vector3d n = length > 1e-9 ? Eigen::Vector3d(d / length) : Eigen::Vector3d::Zero();
-    r.impulse = double(stored.x() + stored.y() - stored.z()) * n;
-    if (j.spring.is_free()) {
-      r.error = std::max({0.0, j.min_length - length, length - j.max_length});
-    } else {
-      r.error = std::abs(length - j.rest_length);
-    }
+  JointKinds::with(j.type, [&]<class Kind>() { Kind::reading(w, j, impulse.data(), r); });
+  if (w.last_substep > 0.0) {
+    r.force = r.impulse / w.last_substep;
+    r.torque = r.angular_impulse / w.last_substep;
   }
-  r.force =
-      w.last_substep > 0.0 ? Eigen::Vector3d(r.impulse / w.last_substep) : Eigen::Vector3d::Zero();
   return r;
-}
-
-namespace {
-template <class Def>
-Def joint_ends(const World::Impl& w, const JointSlot& j) {
-  Def def;
-  def.body_a = {j.body_a, w.bodies[j.body_a].generation};
-  def.body_b = {j.body_b, w.bodies[j.body_b].generation};
-  def.local_anchor_a = j.local_anchor_a;
-  def.local_anchor_b = j.local_anchor_b;
-  def.spring = j.spring;
-  return def;
-}
-
-const JointSlot& joint_of_type(const World::Impl& w, const char* call, JointId id, JointType type) {
-  const JointSlot& j = w.joints[joint_slot(w, call, id)];
-  if (j.type != type) {
-    validation::reject(call, "joint", type == JointType::Ball ? "a distance joint" : "a ball joint",
-                       "is not of the type asked for");
-  }
-  return j;
-}
-}  // namespace
-
-BallJointDef World::ball_joint(JointId id) const {
-  return joint_ends<BallJointDef>(*impl_, joint_of_type(*impl_, "ball_joint", id, JointType::Ball));
-}
-
-DistanceJointDef World::distance_joint(JointId id) const {
-  const JointSlot& j = joint_of_type(*impl_, "distance_joint", id, JointType::Distance);
-  DistanceJointDef def = joint_ends<DistanceJointDef>(*impl_, j);
-  def.rest_length = j.rest_length;
-  def.min_length = j.min_length;
-  def.max_length = j.max_length;
-  return def;
 }
 
 }  // namespace softstep

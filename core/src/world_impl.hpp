@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "joints/joint_registry.hpp"
 #include "softstep/graph_coloring/graph_coloring.hpp"
 #include "softstep/simd/body_integration.hpp"
 #include "softstep/simd/step_context.hpp"
@@ -44,13 +45,12 @@ struct JointSlot {
   std::uint32_t body_b = 0;
   Eigen::Vector3d local_anchor_a = Eigen::Vector3d::Zero();
   Eigen::Vector3d local_anchor_b = Eigen::Vector3d::Zero();
-  Spring spring;
-  double rest_length = 0.0;  // distance joints: clamped into [min, max]
-  double min_length = 0.0;
-  double max_length = 0.0;
+  JointDefs def;  // the definition as validated: the type's own settings (joints/*_joint.cpp)
   // Accumulated impulses kept here while the joint is not in the solver's lanes (between a
-  // topology change and the next pack). Ball: xyz. Distance: x = spring/rod, y = lower, z = upper.
-  Eigen::Vector3f impulse = Eigen::Vector3f::Zero();
+  // topology change and the next pack), in the order of its kind's read_impulses.
+  std::array<float, kMaxJointImpulses> impulse{};
+  // Revolute: the hinge angle at the last step's start, rad, unwrapped (revolute_joint.cpp).
+  double angle = 0.0;
 };
 
 // The solver's body index: 0 is the static dummy; a movable body in slot s is s + 1.
@@ -75,9 +75,9 @@ struct SolverBodies {
 // A kernel variant in the lanes: which, and how much of it (see solver/joint_batches.hpp).
 struct KernelUse {
   JointType type;
-  std::uint8_t variant;  // index into kBallVariants or kDistanceVariants
-  simd::JointFeatures features{};
-  int rows_per_joint = 0;
+  std::uint8_t variant;     // index into the kind's variants
+  std::uint32_t signature;  // the parts its joints run (kinds that pack by signature)
+  PlanKernel plan{};        // as the plan shows it, without the counts
   std::uint32_t batches = 0;
   std::uint32_t joints = 0;
 };
@@ -96,27 +96,34 @@ class LaneSolver {
   // Copies the lanes' impulses back into the slots (before a re-pack).
   virtual void save_impulses(std::vector<JointSlot>& joints) const = 0;
   virtual bool in_lanes(std::uint32_t joint_slot) const = 0;
-  virtual Eigen::Vector3f impulse(std::uint32_t joint_slot) const = 0;  // when in_lanes
+  // The joint's accumulated impulses (its kind's kImpulses floats), when in_lanes.
+  virtual std::array<float, kMaxJointImpulses> impulses(std::uint32_t joint_slot) const = 0;
+  // After set_joint: rewrites the joint's lane from its slot when it runs the same kernel and
+  // signature as before, keeping its impulses; false when it needs a re-pack instead.
+  virtual bool refresh(std::uint32_t joint_slot, const std::vector<JointSlot>& joints,
+                       bool specialize) = 0;
   virtual const std::vector<KernelUse>& uses() const = 0;
   virtual bool needs(Pass pass) const = 0;  // some variant in the lanes runs this pass
-  // extra[body] += factor * |impulse| * |local anchor| for both bodies of every joint.
+  // extra[body] += factor * tension * |local anchor| for both bodies of every joint (tension:
+  // the magnitude of its linear impulse, its kind's tension()).
   virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
                                             std::vector<double>& extra) const = 0;
   // The stages of a step. Every thread of the step calls each with its Share; the stages
   // that run colour by colour meet at a barrier after each colour and after the overflow set,
   // the others touch only the thread's own groups or bodies (callers put the barriers).
   // Writes the step-start anchors and the rows' softness coefficients.
-  virtual void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-                       const simd::SubstepContext& ctx, const solver::Share& share) = 0;
-  virtual void warm_start(const simd::BodyArrays& arrays, const solver::Share& share) = 0;
+  virtual void prepare(std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+                       const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+                       const solver::Share& share) = 0;
+  virtual void warm_start(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+                          const solver::Share& share) = 0;
   virtual void clear_impulses(const solver::Share& share) = 0;
   virtual void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
   virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
-                                    bool gravity, bool damping,
-                                    const solver::Share& share) = 0;
+                                    bool gravity, bool damping, const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
 
@@ -171,6 +178,8 @@ struct World::Impl {
   void build_plan();       // packs, lists and plans if anything changed
   // The user touched this body: its island wakes, and it starts its rest time again.
   void touch(std::uint32_t body_slot);
+  // The slot of a live body, or InvalidArgument naming `field` and the id.
+  std::uint32_t live_body(std::string_view call, std::string_view field, BodyId id) const;
   void wake_island(std::uint32_t island);
   void wake_all();
   // After a step of dt: rest times, then islands whose bodies all rested time_to_sleep.

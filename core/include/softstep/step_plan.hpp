@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "softstep/joints.hpp"
@@ -33,14 +34,18 @@ enum class SpringRow : std::uint8_t { Any, Rigid, Soft, Free };
 const char* spring_row_name(SpringRow row);  // "any", "rigid", "soft", "free"
 
 // One kernel variant the step runs: the features it is compiled with and how much it runs.
+// Ball and distance joints have compiled variants per spring kind and limit rows; the angular
+// types run one kernel whose groups are packed by the parts they have, and skip the others.
 struct PlanKernel {
   JointType type;
-  SpringRow row;
+  SpringRow row;          // ball, distance: the spring row; Any for the general kernel
   bool lower_limit;       // distance joints: min-length row (the general kernel: per lane)
   bool upper_limit;       // distance joints: max-length row
   int rows_per_joint;     // constraint rows one joint solves per pass
   std::uint32_t batches;  // lane groups
   std::uint32_t joints;
+  std::string parts;      // the parts its joints run: "point + hinge lock + limit + motor"
+  bool compiled_variant;  // a variant compiled for exactly these parts (else a general kernel)
 };
 
 struct StepPlan {
@@ -48,7 +53,8 @@ struct StepPlan {
   bool gravity = false;               // an awake dynamic body with gravity x gravity_scale != 0
   bool damping = false;               // an awake body with linear or angular damping
   bool springs = false;               // an awake joint with a soft spring
-  bool limits = false;                // an awake distance joint with a min or max limit row
+  bool limits = false;                // an awake joint with a limit row
+  bool motors = false;                // an awake joint with a motor
   bool warm_start = false;            // settings().warm_start, with joints awake
   bool kinematic_bodies = false;      // an awake kinematic body
   bool unconstrained_bodies = false;  // an awake movable body with no joint

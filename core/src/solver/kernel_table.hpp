@@ -1,63 +1,12 @@
-// Builds the kernel table of one lane type. Included only by the kernels_*.cpp files, each
-// compiled for its instruction set; nothing else belongs in those files (a shared inline
-// function compiled with AVX2 there could be picked by the linker for scalar code).
+// Builds the body-integration kernels of one lane type. Included only by the kernels_*.cpp
+// files, each compiled for its instruction set; nothing else belongs in those files (a shared
+// inline function compiled with AVX2 there could be picked by the linker for scalar code).
+// The joint kernels are built per kind in the generated files (joints/kind_kernels.cpp.in).
 #pragma once
-
-#include <utility>
 
 #include "solver/joint_batches.hpp"
 
 namespace softstep::solver {
-
-// One variant's passes, each a loop over consecutive groups; nullptr for a pass the variant
-// does not need.
-template <class L, JointFeatures F>
-VariantKernels<simd::BallJointGroup<simd::kWidth<L>>> ball_variant() {
-  using Group = simd::BallJointGroup<simd::kWidth<L>>;
-  VariantKernels<Group> k{};
-  k.prepare = [](Group* g, std::size_t n, const simd::SubstepContext& ctx) {
-    for (std::size_t i = 0; i < n; ++i) simd::prepare_ball_joints<L, F>(g[i], ctx);
-  };
-  if constexpr (simd::ball_needs_solve(F)) {
-    k.warm_start = [](Group* g, std::size_t n, const simd::BodyArrays& b) {
-      for (std::size_t i = 0; i < n; ++i) simd::warm_start_ball_joints<L, F>(g[i], b);
-    };
-    k.solve = [](Group* g, std::size_t n, const simd::BodyArrays& b, const simd::SubstepContext&) {
-      for (std::size_t i = 0; i < n; ++i) simd::solve_ball_joints<L, true, F>(g[i], b);
-    };
-  }
-  if constexpr (simd::ball_needs_relax(F)) {
-    k.relax = [](Group* g, std::size_t n, const simd::BodyArrays& b, const simd::SubstepContext&) {
-      for (std::size_t i = 0; i < n; ++i) simd::solve_ball_joints<L, false, F>(g[i], b);
-    };
-  }
-  return k;
-}
-
-template <class L, JointFeatures F>
-VariantKernels<simd::DistanceJointGroup<simd::kWidth<L>>> distance_variant() {
-  using Group = simd::DistanceJointGroup<simd::kWidth<L>>;
-  VariantKernels<Group> k{};
-  k.prepare = [](Group* g, std::size_t n, const simd::SubstepContext& ctx) {
-    for (std::size_t i = 0; i < n; ++i) simd::prepare_distance_joints<L, F>(g[i], ctx);
-  };
-  if constexpr (simd::distance_needs_solve(F)) {
-    k.warm_start = [](Group* g, std::size_t n, const simd::BodyArrays& b) {
-      for (std::size_t i = 0; i < n; ++i) simd::warm_start_distance_joints<L, F>(g[i], b);
-    };
-    k.solve = [](Group* g, std::size_t n, const simd::BodyArrays& b,
-                 const simd::SubstepContext& ctx) {
-      for (std::size_t i = 0; i < n; ++i) simd::solve_distance_joints<L, true, F>(g[i], b, ctx);
-    };
-  }
-  if constexpr (simd::distance_needs_relax(F)) {
-    k.relax = [](Group* g, std::size_t n, const simd::BodyArrays& b,
-                 const simd::SubstepContext& ctx) {
-      for (std::size_t i = 0; i < n; ++i) simd::solve_distance_joints<L, false, F>(g[i], b, ctx);
-    };
-  }
-  return k;
-}
 
 template <class L, bool kGravity, bool kDamping>
 void integrate_velocity_blocks(simd::VelocityRecord* v, const simd::ForceRecord* f,
@@ -71,16 +20,8 @@ void integrate_velocity_blocks(simd::VelocityRecord* v, const simd::ForceRecord*
 }
 
 template <class L>
-KernelTable<simd::kWidth<L>> make_kernel_table() {
-  KernelTable<simd::kWidth<L>> t;
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    t.ball = {ball_variant<L, kBallVariants[I]>()...};
-  }
-  (std::make_index_sequence<kBallVariants.size()>());
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    t.distance = {distance_variant<L, kDistanceVariants[I]>()...};
-  }
-  (std::make_index_sequence<kDistanceVariants.size()>());
+BodyKernels make_body_kernels() {
+  BodyKernels t;
   t.integrate_velocities[0][0] = integrate_velocity_blocks<L, false, false>;
   t.integrate_velocities[0][1] = integrate_velocity_blocks<L, false, true>;
   t.integrate_velocities[1][0] = integrate_velocity_blocks<L, true, false>;

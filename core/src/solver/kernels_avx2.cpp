@@ -1,9 +1,9 @@
-// 8 lanes.
+// The 8-wide body kernels, compiled with AVX2 (and FMA when the build fuses).
 #include "solver/kernel_table.hpp"
+#include "solver/lane_types.hpp"
 
 namespace softstep::solver {
-using Avx2Lane = xsimd::batch<float, xsimd::avx2>;
-KernelTable<8> avx2_kernels() {
-  return make_kernel_table<Avx2Lane>();
+BodyKernels avx2_body_kernels() {
+  return make_body_kernels<Avx2Lane>();
 }
 }  // namespace softstep::solver

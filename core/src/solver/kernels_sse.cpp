@@ -1,9 +1,9 @@
-// 4 lanes, SSE4.2 (fused like every width when SOFTSTEP_USE_FMA: see lanes.hpp).
+// The 4-wide body kernels, compiled with SSE4.2 (and FMA when the build fuses).
 #include "solver/kernel_table.hpp"
+#include "solver/lane_types.hpp"
 
 namespace softstep::solver {
-using SseLane = xsimd::batch<float, xsimd::sse4_2>;
-KernelTable<4> sse_kernels() {
-  return make_kernel_table<SseLane>();
+BodyKernels sse_body_kernels() {
+  return make_body_kernels<SseLane>();
 }
 }  // namespace softstep::solver

@@ -1,7 +1,9 @@
 // The joints of one lane width: packing from the colouring, the per-step anchor pass, and
-// the stage loops (each colour's groups, then the overflow set in order).
+// the stage loops (each colour's groups, then the overflow set in order). Generic over the
+// joint registry (joints/joint_registry.hpp): no joint type is named here.
 #include <algorithm>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "solver/joint_batches.hpp"
@@ -12,94 +14,44 @@ namespace softstep {
 namespace {
 
 using solver::ColorBatches;
-using solver::JointFeatures;
 using solver::KernelTable;
-using solver::RowKind;
+using solver::KindBatches;
 using solver::Run;
 
-// Where a joint's lane is, for reading its impulse.
+constexpr std::uint32_t kPadding = simd::kPaddingLane;
+
+// Where a joint's lane is, for reading its impulses and refreshing it in place.
 struct LaneRef {
   bool overflow = false;
+  std::uint8_t kind = 0;  // index in JointKinds
+  std::uint8_t variant = 0;
+  std::uint32_t signature = 0;
   std::uint32_t color = 0;  // index into colors_ (non-empty colours only)
   std::uint32_t group = 0;
   std::uint32_t lane = 0;
 };
 
-template <int W, class Group>
-void fill_common_lane(Group& g, int lane, std::uint32_t slot, const JointSlot& j,
-                      const std::vector<BodySlot>& bodies) {
-  g.id[lane] = slot;
-  g.body_a[lane] = solver_index(bodies[j.body_a], j.body_a);
-  g.body_b[lane] = solver_index(bodies[j.body_b], j.body_b);
-  g.hertz[lane] = static_cast<float>(j.spring.hertz);
-  g.zeta[lane] = static_cast<float>(j.spring.damping_ratio);
-}
-
-// A padding lane: both bodies the static dummy, no spring, no limits: it applies nothing.
+// A padding lane: both bodies the static dummy, every setting zero: it applies nothing.
 template <class Group>
 Group empty_group() {
   Group g{};
-  std::fill(std::begin(g.id), std::end(g.id), simd::kPaddingLane);
+  std::fill(std::begin(g.id), std::end(g.id), kPadding);
   return g;
 }
 
 template <int W>
-void fill_lane(simd::BallJointGroup<W>& g, int lane, std::uint32_t slot, const JointSlot& j,
-               const std::vector<BodySlot>& bodies) {
-  fill_common_lane<W>(g, lane, slot, j, bodies);
-  for (int k = 0; k < 3; ++k) g.impulse[k][lane] = j.impulse[k];
-}
-
-template <int W>
-void fill_lane(simd::DistanceJointGroup<W>& g, int lane, std::uint32_t slot, const JointSlot& j,
-               const std::vector<BodySlot>& bodies) {
-  fill_common_lane<W>(g, lane, slot, j, bodies);
-  const bool rigid = j.spring.is_rigid();
-  g.rest_length[lane] = static_cast<float>(j.rest_length);
-  g.min_length[lane] = static_cast<float>(j.min_length);
-  g.max_length[lane] = static_cast<float>(j.max_length);
-  g.lower_enabled[lane] = (!rigid && j.min_length > 0.0) ? 1.0f : 0.0f;
-  g.upper_enabled[lane] =
-      (!rigid && j.max_length < std::numeric_limits<double>::infinity()) ? 1.0f : 0.0f;
-  g.impulse[lane] = j.impulse.x();
-  g.lower_impulse[lane] = j.impulse.y();
-  g.upper_impulse[lane] = j.impulse.z();
-}
-
-// The kernel variant a joint runs with (see joint_batches.hpp); 0, the general kernel, when
-// the world does not specialize.
-std::uint8_t variant_of(const JointSlot& j, bool specialize) {
-  if (!specialize) return 0;
-  const RowKind row = j.spring.is_rigid()  ? RowKind::Rigid
-                      : j.spring.is_free() ? RowKind::Free
-                                           : RowKind::Soft;
-  JointFeatures f{row, false, false};
-  if (j.type == JointType::Distance && row != RowKind::Rigid) {
-    f.lower = j.min_length > 0.0;
-    f.upper = j.max_length < std::numeric_limits<double>::infinity();
-  }
-  const auto find = [&](const auto& variants) {
-    for (std::size_t i = 1; i < variants.size(); ++i) {
-      if (variants[i] == f) return static_cast<std::uint8_t>(i);
-    }
-    throw std::logic_error("variant_of: no kernel variant for this joint");
-  };
-  return j.type == JointType::Ball ? find(solver::kBallVariants) : find(solver::kDistanceVariants);
-}
-
-template <int W>
-Eigen::Vector3f lane_impulse(const simd::BallJointGroup<W>& g, std::uint32_t lane) {
-  return {g.impulse[0][lane], g.impulse[1][lane], g.impulse[2][lane]};
-}
-template <int W>
-Eigen::Vector3f lane_impulse(const simd::DistanceJointGroup<W>& g, std::uint32_t lane) {
-  return {g.impulse[lane], g.lower_impulse[lane], g.upper_impulse[lane]};
+void fill_common_lane(simd::AnchorLanes<W>& g, int lane, std::uint32_t slot, const JointSlot& j,
+                      const std::vector<BodySlot>& bodies) {
+  g.id[lane] = slot;
+  g.body_a[lane] = solver_index(bodies[j.body_a], j.body_a);
+  g.body_b[lane] = solver_index(bodies[j.body_b], j.body_b);
 }
 
 // World-frame anchors and centre offset at the step start, from the double-precision poses:
 // far from the origin a float position has mm-sized steps, a float difference does not.
-template <class Group>
-void write_anchors(Group& g, int lane, const JointSlot& j, const std::vector<BodySlot>& bodies) {
+template <int W>
+void write_anchors(simd::AnchorLanes<W>& g, int lane, const JointSlot& j,
+                   const std::vector<BodySlot>& bodies) {
   const BodySlot& a = bodies[j.body_a];
   const BodySlot& b = bodies[j.body_b];
   const Eigen::Vector3d r_a = a.orientation * j.local_anchor_a;
@@ -112,30 +64,19 @@ void write_anchors(Group& g, int lane, const JointSlot& j, const std::vector<Bod
   }
 }
 
-template <class Group>
-void zero_impulses(Group& g) {
-  if constexpr (requires { g.lower_impulse; }) {
-    std::fill(std::begin(g.impulse), std::end(g.impulse), 0.0f);
-    std::fill(std::begin(g.lower_impulse), std::end(g.lower_impulse), 0.0f);
-    std::fill(std::begin(g.upper_impulse), std::end(g.upper_impulse), 0.0f);
-  } else {
-    for (auto& row : g.impulse) std::fill(std::begin(row), std::end(row), 0.0f);
-  }
-}
-
-// Rows one lane of a variant solves per pass: 3 for a ball joint, the spring row (unless
-// free) and the limit rows for a distance joint (the general kernel evaluates all three).
-int rows_of(JointType type, JointFeatures f) {
-  if (type == JointType::Ball) return f.row == RowKind::Free ? 0 : 3;
-  if (f.row == RowKind::Any) return 3;
-  return (f.row == RowKind::Free ? 0 : 1) + (f.lower ? 1 : 0) + (f.upper ? 1 : 0);
+template <class Batches>
+bool empty(const Batches& batches) {
+  bool none = true;
+  std::apply([&](const auto&... kind) { ((none = none && kind.groups.empty()), ...); }, batches);
+  return none;
 }
 
 template <int W>
 class LaneSolverImpl final : public LaneSolver {
  public:
   explicit LaneSolverImpl(KernelTable<W> kernels)
-      : kernels_(kernels), scalar_(solver::scalar_kernels()) {}
+      : kernels_(std::move(kernels)),
+        scalar_(solver::kernel_table<1>(solver::scalar_body_kernels())) {}
 
   int lanes() const override { return W; }
 
@@ -145,14 +86,13 @@ class LaneSolverImpl final : public LaneSolver {
     overflow_ = {};
     lane_of_.assign(joints.size(), LaneRef{});
     lane_known_.assign(joints.size(), false);
-    lane_is_ball_.assign(joints.size(), false);
     for (int c = 0; c < graph_coloring::kColorCount; ++c) {
       const auto members = coloring.members(c);
       if (members.empty()) continue;
       ColorBatches<W> batches;
       const auto color = static_cast<std::uint32_t>(colors_.size());
       add_members<W>(batches, members, joints, bodies, specialize, false, color);
-      if (!batches.ball.empty() || !batches.distance.empty()) colors_.push_back(std::move(batches));
+      if (!empty(batches)) colors_.push_back(std::move(batches));
     }
     add_members<1>(overflow_, coloring.overflow(), joints, bodies, specialize, true, 0);
     count_uses();
@@ -160,7 +100,7 @@ class LaneSolverImpl final : public LaneSolver {
 
   void save_impulses(std::vector<JointSlot>& joints) const override {
     for (std::uint32_t j = 0; j < joints.size(); ++j) {
-      if (joints[j].alive && in_lanes(j)) joints[j].impulse = impulse(j);
+      if (joints[j].alive && in_lanes(j)) joints[j].impulse = impulses(j);
     }
   }
 
@@ -168,136 +108,173 @@ class LaneSolverImpl final : public LaneSolver {
     return joint_slot < lane_known_.size() && lane_known_[joint_slot];
   }
 
-  Eigen::Vector3f impulse(std::uint32_t joint_slot) const override {
+  std::array<float, kMaxJointImpulses> impulses(std::uint32_t joint_slot) const override {
+    std::array<float, kMaxJointImpulses> out{};
     const LaneRef& r = lane_of_[joint_slot];
-    const bool ball = lane_is_ball_[joint_slot];
-    if (r.overflow) {
-      return ball ? lane_impulse(overflow_.ball[r.group], r.lane)
-                  : lane_impulse(overflow_.distance[r.group], r.lane);
-    }
-    const ColorBatches<W>& c = colors_[r.color];
-    return ball ? lane_impulse(c.ball[r.group], r.lane) : lane_impulse(c.distance[r.group], r.lane);
+    with_lane(r, [&]<class Kind>(const auto& group) {
+      Kind::read_impulses(group, static_cast<int>(r.lane), out.data());
+    });
+    return out;
+  }
+
+  bool refresh(std::uint32_t joint_slot, const std::vector<JointSlot>& joints,
+               bool specialize) override {
+    if (!in_lanes(joint_slot)) return false;
+    const LaneRef& r = lane_of_[joint_slot];
+    const JointSlot& j = joints[joint_slot];
+    bool done = false;
+    with_lane(r, [&]<class Kind>(auto& group) {
+      if (Kind::variant(j, specialize) != r.variant || Kind::signature(j) != r.signature) return;
+      Kind::fill_lane(group, static_cast<int>(r.lane), j);
+      done = true;
+    });
+    if (done) count_uses();
+    return done;
   }
 
   void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
                                     std::vector<double>& extra) const override {
-    for_each_lane([&](const auto& group, int lane, std::uint32_t slot) {
-      const Eigen::Vector3f p = lane_impulse(group, static_cast<std::uint32_t>(lane));
-      constexpr bool ball = requires {
-        group.impulse[0][0];
-      };
-      const double magnitude = ball ? double(p.norm()) : std::abs(double(p.x() + p.y() - p.z()));
-      if (magnitude == 0.0) return;
-      const JointSlot& j = joints[slot];
-      extra[j.body_a] += factor * magnitude * j.local_anchor_a.norm();
-      extra[j.body_b] += factor * magnitude * j.local_anchor_b.norm();
-    });
+    visit_lanes(*this, solver::Share{},
+                [&]<class Kind>(const auto& group, int lane, std::uint32_t slot) {
+                  float impulse[kMaxJointImpulses];
+                  Kind::read_impulses(group, lane, impulse);
+                  const JointSlot& j = joints[slot];
+                  const double magnitude = Kind::tension(j, impulse);
+                  if (magnitude == 0.0) return;
+                  extra[j.body_a] += factor * magnitude * j.local_anchor_a.norm();
+                  extra[j.body_b] += factor * magnitude * j.local_anchor_b.norm();
+                });
   }
 
   const std::vector<KernelUse>& uses() const override { return uses_; }
   bool needs(Pass pass) const override { return needs_[static_cast<int>(pass)]; }
 
-  void prepare(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-               const simd::SubstepContext& ctx, const solver::Share& share) override {
-    visit_lanes(*this, share, [&](auto& group, int lane, std::uint32_t joint) {
+  void prepare(std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+               const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+               const solver::Share& share) override {
+    visit_lanes(*this, share, [&]<class Kind>(auto& group, int lane, std::uint32_t joint) {
       write_anchors(group, lane, joints[joint], bodies);
+      Kind::write_step_start(group, lane, joints[joint], bodies);
     });
-    for (auto& c : colors_) run_share(c, kernels_, share, &Ball::prepare, &Distance::prepare, ctx);
+    for (auto& c : colors_) run_share(c, kernels_, share, PassName::prepare, arrays, ctx);
     if (share.thread == 0) {
-      run_share(overflow_, scalar_, solver::Share{}, &Ball1::prepare, &Distance1::prepare, ctx);
+      run_share(overflow_, scalar_, solver::Share{}, PassName::prepare, arrays, ctx);
     }
   }
 
-  void warm_start(const simd::BodyArrays& arrays, const solver::Share& share) override {
-    run_colors(share, &Ball::warm_start, &Distance::warm_start, &Ball1::warm_start,
-               &Distance1::warm_start, arrays);
+  void warm_start(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
+                  const solver::Share& share) override {
+    run_colors(share, PassName::warm_start, arrays, ctx);
   }
 
   void clear_impulses(const solver::Share& share) override {
-    visit_groups(share, [](auto& g) { zero_impulses(g); });
+    const auto clear = [&](auto& batches, const solver::Share& part) {
+      JointKinds::for_each([&]<class Kind>() {
+        auto& groups = std::get<JointKinds::index_of<Kind>()>(batches).groups;
+        const solver::Slice s = solver::slice_of(groups.size(), part);
+        for (std::size_t i = s.begin; i < s.end; ++i) Kind::clear_impulses(groups[i]);
+      });
+    };
+    for (auto& c : colors_) clear(c, share);
+    if (share.thread == 0) clear(overflow_, solver::Share{});
   }
 
   void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
              const solver::Share& share) override {
-    run_colors(share, &Ball::solve, &Distance::solve, &Ball1::solve, &Distance1::solve, arrays,
-               ctx);
+    run_colors(share, PassName::solve, arrays, ctx);
   }
 
   void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
              const solver::Share& share) override {
-    run_colors(share, &Ball::relax, &Distance::relax, &Ball1::relax, &Distance1::relax, arrays,
-               ctx);
+    run_colors(share, PassName::relax, arrays, ctx);
   }
 
   void integrate_velocities(SolverBodies& b, const simd::SubstepContext& ctx, bool gravity,
                             bool damping, const solver::Share& share) override {
     const solver::Slice mine = solver::slice_of(b.blocks.size(), share);
-    kernels_.integrate_velocities[gravity][damping](b.velocity.data(), b.force.data(),
-                                                    b.blocks.data() + mine.begin,
-                                                    mine.end - mine.begin, ctx);
+    kernels_.bodies.integrate_velocities[gravity][damping](b.velocity.data(), b.force.data(),
+                                                           b.blocks.data() + mine.begin,
+                                                           mine.end - mine.begin, ctx);
   }
 
   void integrate_positions(SolverBodies& b, float h, const solver::Share& share) override {
     const solver::Slice mine = solver::slice_of(b.blocks.size(), share);
-    kernels_.integrate_positions(b.delta.data(), b.velocity.data(), b.blocks.data() + mine.begin,
-                                 mine.end - mine.begin, h);
+    kernels_.bodies.integrate_positions(b.delta.data(), b.velocity.data(),
+                                        b.blocks.data() + mine.begin, mine.end - mine.begin, h);
   }
 
  private:
-  using Ball = solver::VariantKernels<simd::BallJointGroup<W>>;
-  using Distance = solver::VariantKernels<simd::DistanceJointGroup<W>>;
-  using Ball1 = solver::VariantKernels<simd::BallJointGroup<1>>;
-  using Distance1 = solver::VariantKernels<simd::DistanceJointGroup<1>>;
+  // A pass of the kernel tables, the same member of every kind's PassKernels.
+  struct PassName {
+    enum Which { prepare, warm_start, solve, relax };
+  };
+  template <class Group>
+  static PassFn<Group> pass_of(const PassKernels<Group>& k, PassName::Which which) {
+    switch (which) {
+      case PassName::prepare:
+        return k.prepare;
+      case PassName::warm_start:
+        return k.warm_start;
+      case PassName::solve:
+        return k.solve;
+      case PassName::relax:
+        return k.relax;
+    }
+    return nullptr;
+  }
 
-  // This thread's share of every run of one colour (or of the overflow set) through the
-  // pass `ball_pass` / `distance_pass` of the run's variant; a variant without the pass is
-  // skipped.
-  template <int V, class BallPass, class DistancePass, class... Args>
+  // This thread's share of every run of one colour (or of the overflow set) through the pass
+  // of the run's variant; a variant without the pass is skipped.
+  template <int V>
   static void run_share(ColorBatches<V>& c, const KernelTable<V>& table, const solver::Share& share,
-                        BallPass ball_pass, DistancePass distance_pass, const Args&... args) {
-    const auto run = [&](auto& groups, const std::vector<Run>& runs, const auto& kernels,
-                         auto pass) {
-      for (const Run& r : runs) {
-        const auto fn = kernels[r.variant].*pass;
+                        PassName::Which pass, const simd::BodyArrays& arrays,
+                        const simd::SubstepContext& ctx) {
+    JointKinds::for_each([&]<class Kind>() {
+      constexpr std::size_t k = JointKinds::index_of<Kind>();
+      auto& batch = std::get<k>(c);
+      const auto& kernels = std::get<k>(table.joints);
+      for (const Run& r : batch.runs) {
+        const auto fn = pass_of(kernels[r.variant], pass);
         if (fn == nullptr) continue;
         const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
-        if (slice.end > slice.begin)
-          fn(groups.data() + r.begin + slice.begin, slice.end - slice.begin, args...);
+        if (slice.end > slice.begin) {
+          fn(batch.groups.data() + r.begin + slice.begin, slice.end - slice.begin, arrays, ctx,
+             r.signature);
+        }
       }
-    };
-    run(c.ball, c.ball_runs, table.ball, ball_pass);
-    run(c.distance, c.distance_runs, table.distance, distance_pass);
+    });
   }
 
   // Colour by colour, each thread its share, a barrier after each colour (joints of the next
   // colour read bodies this one wrote); then the overflow set on thread 0, in order.
-  template <class BallPass, class DistancePass, class Ball1Pass, class Distance1Pass, class... Args>
-  void run_colors(const solver::Share& share, BallPass ball_pass, DistancePass distance_pass,
-                  Ball1Pass ball1_pass, Distance1Pass distance1_pass, const Args&... args) {
+  void run_colors(const solver::Share& share, PassName::Which pass, const simd::BodyArrays& arrays,
+                  const simd::SubstepContext& ctx) {
     for (auto& c : colors_) {
-      run_share(c, kernels_, share, ball_pass, distance_pass, args...);
+      run_share(c, kernels_, share, pass, arrays, ctx);
       team_barrier(share);
     }
-    if (!overflow_.ball.empty() || !overflow_.distance.empty()) {
-      if (share.thread == 0) {
-        run_share(overflow_, scalar_, solver::Share{}, ball1_pass, distance1_pass, args...);
-      }
+    if (!empty(overflow_)) {
+      if (share.thread == 0) run_share(overflow_, scalar_, solver::Share{}, pass, arrays, ctx);
       team_barrier(share);
     }
   }
 
+  // f.template operator()<Kind>(group) for the group a lane reference points at.
   template <class F>
-  void visit_groups(const solver::Share& share, F&& f) {
-    for (auto& c : colors_) {
-      const solver::Slice b = solver::slice_of(c.ball.size(), share);
-      for (std::size_t i = b.begin; i < b.end; ++i) f(c.ball[i]);
-      const solver::Slice d = solver::slice_of(c.distance.size(), share);
-      for (std::size_t i = d.begin; i < d.end; ++i) f(c.distance[i]);
-    }
-    if (share.thread == 0) {
-      for (auto& g : overflow_.ball) f(g);
-      for (auto& g : overflow_.distance) f(g);
-    }
+  void with_lane(const LaneRef& r, F&& f) const {
+    const_cast<LaneSolverImpl*>(this)->with_lane(r, f);
+  }
+  template <class F>
+  void with_lane(const LaneRef& r, F&& f) {
+    JointKinds::for_each([&]<class Kind>() {
+      constexpr std::size_t k = JointKinds::index_of<Kind>();
+      if (k != r.kind) return;
+      if (r.overflow) {
+        f.template operator()<Kind>(std::get<k>(overflow_).groups[r.group]);
+      } else {
+        f.template operator()<Kind>(std::get<k>(colors_[r.color]).groups[r.group]);
+      }
+    });
   }
 
   // A joint is in the lanes unless its bodies sleep (both movable ends of a joint share an
@@ -306,121 +283,113 @@ class LaneSolverImpl final : public LaneSolver {
     return bodies[j.body_a].asleep || bodies[j.body_b].asleep;
   }
 
-  // Lays out one colour's members (or the overflow set): per type, one run per variant in
-  // variant order, each packed into groups of V lanes. Members keep their order within a
-  // variant, so the overflow set's sequential order is the same at every width.
+  // Lays out one colour's members (or the overflow set): per kind in registry order, one run
+  // per (variant, signature) in that order, each packed into groups of V lanes. Members keep
+  // their order within a run, so the overflow set's sequential order is the same at every
+  // width.
   template <int V>
   void add_members(ColorBatches<V>& batches, std::span<const std::uint32_t> members,
                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                    bool specialize, bool overflow, std::uint32_t color) {
-    std::array<std::vector<std::uint32_t>, solver::kBallVariants.size()> ball;
-    std::array<std::vector<std::uint32_t>, solver::kDistanceVariants.size()> distance;
+    using Key = std::pair<std::uint8_t, std::uint32_t>;  // variant, signature
+    std::array<std::map<Key, std::vector<std::uint32_t>>, JointKinds::size> lists;
     for (std::uint32_t j : members) {
       if (asleep(joints[j], bodies)) continue;
-      const std::uint8_t v = variant_of(joints[j], specialize);
-      (joints[j].type == JointType::Ball ? ball[v] : distance[v]).push_back(j);
+      JointKinds::with(joints[j].type, [&]<class Kind>() {
+        lists[JointKinds::index_of<Kind>()]
+             [{Kind::variant(joints[j], specialize), Kind::signature(joints[j])}]
+                 .push_back(j);
+      });
     }
-    const auto place = [&](auto& groups, std::vector<Run>& runs, const auto& lists, bool is_ball) {
-      using Group = typename std::decay_t<decltype(groups)>::value_type;
-      for (std::size_t v = 0; v < lists.size(); ++v) {
-        if (lists[v].empty()) continue;
-        const auto lanes = graph_coloring::pack_lanes(lists[v], V, kPadding);
-        const auto begin = static_cast<std::uint32_t>(groups.size());
-        groups.resize(begin + lanes.size() / V, empty_group<Group>());
+    JointKinds::for_each([&]<class Kind>() {
+      constexpr std::size_t k = JointKinds::index_of<Kind>();
+      auto& batch = std::get<k>(batches);
+      using Group = typename Kind::template Group<V>;
+      for (const auto& [key, list] : lists[k]) {
+        const auto lanes = graph_coloring::pack_lanes(list, V, kPadding);
+        const auto begin = static_cast<std::uint32_t>(batch.groups.size());
+        batch.groups.resize(begin + lanes.size() / V, empty_group<Group>());
         for (std::size_t i = 0; i < lanes.size(); ++i) {
           const std::uint32_t j = lanes[i];
           const auto group = static_cast<std::uint32_t>(begin + i / V);
           const auto lane = static_cast<std::uint32_t>(i % V);
           if (j == kPadding) continue;
-          fill_lane<V>(groups[group], static_cast<int>(lane), j, joints[j], bodies);
-          lane_of_[j] = {overflow, color, group, lane};
+          fill_common_lane<V>(batch.groups[group], static_cast<int>(lane), j, joints[j], bodies);
+          Kind::fill_lane(batch.groups[group], static_cast<int>(lane), joints[j]);
+          lane_of_[j] = {
+              overflow, static_cast<std::uint8_t>(k), key.first, key.second, color, group, lane};
           lane_known_[j] = true;
-          lane_is_ball_[j] = is_ball;
         }
-        runs.push_back(
-            {static_cast<std::uint8_t>(v), begin, static_cast<std::uint32_t>(groups.size())});
+        batch.runs.push_back(
+            {key.first, key.second, begin, static_cast<std::uint32_t>(batch.groups.size())});
       }
-    };
-    place(batches.ball, batches.ball_runs, ball, true);
-    place(batches.distance, batches.distance_runs, distance, false);
+    });
   }
 
-  // Per variant in use: groups and joints (for the plan), and which passes anything needs.
+  // Per (kind, variant, signature) in use: groups and joints (for the plan), and which passes
+  // anything needs.
   void count_uses() {
     uses_.clear();
     needs_.fill(false);
-    const auto count = [&](JointType type, const auto& variants, const auto& groups,
-                           const std::vector<Run>& runs, int width) {
-      for (const Run& r : runs) {
-        const JointFeatures f = variants[r.variant];
-        auto it = std::find_if(uses_.begin(), uses_.end(), [&](const KernelUse& u) {
-          return u.type == type && u.variant == r.variant;
-        });
-        if (it == uses_.end()) {
-          it = uses_.insert(std::upper_bound(uses_.begin(), uses_.end(), KernelUse{type, r.variant},
-                                             [](const KernelUse& x, const KernelUse& y) {
-                                               return std::pair(x.type, x.variant) <
-                                                      std::pair(y.type, y.variant);
-                                             }),
-                            KernelUse{type, r.variant});
-          it->features = f;
-          it->rows_per_joint = rows_of(type, f);
+    const auto count = [&](const auto& batches, int width) {
+      JointKinds::for_each([&]<class Kind>() {
+        const auto& batch = std::get<JointKinds::index_of<Kind>()>(batches);
+        for (const Run& r : batch.runs) {
+          const auto order = [](const KernelUse& x, const KernelUse& y) {
+            return std::tuple(x.type, x.variant, x.signature) <
+                   std::tuple(y.type, y.variant, y.signature);
+          };
+          KernelUse key{Kind::type, r.variant, r.signature};
+          auto it = std::lower_bound(uses_.begin(), uses_.end(), key, order);
+          if (it == uses_.end() || order(key, *it)) {
+            key.plan = Kind::plan_kernel(r.variant, r.signature);
+            key.plan.rows_per_joint = Kind::rows(r.variant, r.signature);
+            it = uses_.insert(it, key);
+          }
+          it->batches += r.end - r.begin;
+          for (std::uint32_t g = r.begin; g < r.end; ++g) {
+            for (int lane = 0; lane < width; ++lane) {
+              it->joints += batch.groups[g].id[lane] != kPadding;
+            }
+          }
+          needs_[static_cast<int>(LaneSolver::Pass::Solve)] |=
+              Kind::needs_solve(r.variant, r.signature);
+          needs_[static_cast<int>(LaneSolver::Pass::Relax)] |=
+              Kind::needs_relax(r.variant, r.signature);
         }
-        it->batches += r.end - r.begin;
-        for (std::uint32_t g = r.begin; g < r.end; ++g) {
-          for (int lane = 0; lane < width; ++lane) it->joints += groups[g].id[lane] != kPadding;
-        }
-        const bool ball = type == JointType::Ball;
-        needs_[static_cast<int>(Pass::Solve)] |=
-            ball ? simd::ball_needs_solve(f) : simd::distance_needs_solve(f);
-        needs_[static_cast<int>(Pass::Relax)] |=
-            ball ? simd::ball_needs_relax(f) : simd::distance_needs_relax(f);
-      }
+      });
     };
-    for (const auto& c : colors_) {
-      count(JointType::Ball, solver::kBallVariants, c.ball, c.ball_runs, W);
-      count(JointType::Distance, solver::kDistanceVariants, c.distance, c.distance_runs, W);
-    }
-    count(JointType::Ball, solver::kBallVariants, overflow_.ball, overflow_.ball_runs, 1);
-    count(JointType::Distance, solver::kDistanceVariants, overflow_.distance,
-          overflow_.distance_runs, 1);
+    for (const auto& c : colors_) count(c, W);
+    count(overflow_, 1);
   }
 
   // Visits every real lane of this thread's share of the groups of every colour, then (on
-  // thread 0 only) of the overflow set. Self is LaneSolverImpl or const LaneSolverImpl.
+  // thread 0 only) of the overflow set, as f.template operator()<Kind>(group, lane, slot).
+  // Self is LaneSolverImpl or const LaneSolverImpl.
   template <class Self, class F>
   static void visit_lanes(Self& self, const solver::Share& share, F&& f) {
-    const auto visit = [&](auto& groups, int width, const solver::Share& part) {
-      const solver::Slice slice = solver::slice_of(groups.size(), part);
-      for (std::size_t i = slice.begin; i < slice.end; ++i) {
-        auto& g = groups[i];
-        for (int lane = 0; lane < width; ++lane) {
-          if (g.id[lane] != kPadding) f(g, lane, g.id[lane]);
+    const auto visit = [&](auto& batches, int width, const solver::Share& part) {
+      JointKinds::for_each([&]<class Kind>() {
+        auto& groups = std::get<JointKinds::index_of<Kind>()>(batches).groups;
+        const solver::Slice slice = solver::slice_of(groups.size(), part);
+        for (std::size_t i = slice.begin; i < slice.end; ++i) {
+          auto& g = groups[i];
+          for (int lane = 0; lane < width; ++lane) {
+            if (g.id[lane] != kPadding) f.template operator()<Kind>(g, lane, g.id[lane]);
+          }
         }
-      }
+      });
     };
-    for (auto& c : self.colors_) {
-      visit(c.ball, W, share);
-      visit(c.distance, W, share);
-    }
-    if (share.thread == 0) {
-      visit(self.overflow_.ball, 1, solver::Share{});
-      visit(self.overflow_.distance, 1, solver::Share{});
-    }
-  }
-  template <class F>
-  void for_each_lane(F&& f) const {
-    visit_lanes(*this, solver::Share{}, f);
+    for (auto& c : self.colors_) visit(c, W, share);
+    if (share.thread == 0) visit(self.overflow_, 1, solver::Share{});
   }
 
-  static constexpr std::uint32_t kPadding = simd::kPaddingLane;
   KernelTable<W> kernels_;
   KernelTable<1> scalar_;
   std::vector<ColorBatches<W>> colors_;
   ColorBatches<1> overflow_;
   std::vector<LaneRef> lane_of_;
   std::vector<bool> lane_known_;
-  std::vector<bool> lane_is_ball_;
   std::vector<KernelUse> uses_;
   std::array<bool, 2> needs_{};
 };
@@ -465,11 +434,14 @@ const char* simd_width_name(SimdWidth width) {
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width) {
   switch (width) {
     case SimdWidth::Scalar:
-      return std::make_unique<LaneSolverImpl<1>>(solver::scalar_kernels());
+      return std::make_unique<LaneSolverImpl<1>>(
+          solver::kernel_table<1>(solver::scalar_body_kernels()));
     case SimdWidth::Sse:
-      return std::make_unique<LaneSolverImpl<4>>(solver::sse_kernels());
+      return std::make_unique<LaneSolverImpl<4>>(
+          solver::kernel_table<4>(solver::sse_body_kernels()));
     case SimdWidth::Avx2:
-      return std::make_unique<LaneSolverImpl<8>>(solver::avx2_kernels());
+      return std::make_unique<LaneSolverImpl<8>>(
+          solver::kernel_table<8>(solver::avx2_body_kernels()));
     case SimdWidth::Best:
       break;
   }

@@ -1,0 +1,31 @@
+// What the joint kinds share on the core side (joint_common.hpp).
+#include "joints/joint_common.hpp"
+
+namespace softstep {
+
+JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
+                             BodyId a, BodyId b, const Eigen::Vector3d& local_anchor_a,
+                             const Eigen::Vector3d& local_anchor_b) {
+  const std::string prefix(def);
+  JointSlot j;
+  j.body_a = w.live_body(call, prefix + ".body_a", a);
+  j.body_b = w.live_body(call, prefix + ".body_b", b);
+  if (j.body_a == j.body_b) {
+    validation::reject(call, prefix + ".body_b", "BodyId{" + std::to_string(b.index) + "}",
+                       "a joint needs two different bodies (body_a is the same body)");
+  }
+  validation::finite(call, prefix + ".local_anchor_a", local_anchor_a);
+  validation::finite(call, prefix + ".local_anchor_b", local_anchor_b);
+  j.local_anchor_a = local_anchor_a;
+  j.local_anchor_b = local_anchor_b;
+  return j;
+}
+
+WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j) {
+  const BodySlot& a = w.bodies[j.body_a];
+  const BodySlot& b = w.bodies[j.body_b];
+  return {a.position + a.orientation * j.local_anchor_a,
+          b.position + b.orientation * j.local_anchor_b};
+}
+
+}  // namespace softstep

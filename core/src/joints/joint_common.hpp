@@ -1,0 +1,41 @@
+// What the joint kinds share on the core side: the checks of a definition's two ends, the
+// spring lanes, and the explicit instantiation of a kind's lane functions for every width.
+#pragma once
+
+#include <string>
+
+#include "softstep/simd/joint_lanes.hpp"
+#include "validation.hpp"
+#include "world_impl.hpp"
+
+namespace softstep {
+
+// A slot with the checked ends of a definition named `def` ("RevoluteJointDef"): live and
+// distinct bodies, finite anchors, not both unable to move. Throws InvalidArgument.
+JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
+                             BodyId a, BodyId b, const Eigen::Vector3d& local_anchor_a,
+                             const Eigen::Vector3d& local_anchor_b);
+
+template <int W>
+void fill_spring_lanes(simd::SoftRowLanes<W>& g, int lane, const Spring& spring) {
+  g.hertz[lane] = static_cast<float>(spring.hertz);
+  g.zeta[lane] = static_cast<float>(spring.damping_ratio);
+}
+
+// World-frame anchor positions now, from the double poses.
+struct WorldAnchors {
+  Eigen::Vector3d a, b;
+};
+WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j);
+
+// The lane functions of kind K for the three widths, in the kind's .cpp.
+#define SOFTSTEP_INSTANTIATE_KIND_LANES(K, W)                         \
+  template void K::fill_lane<W>(K::Group<W>&, int, const JointSlot&); \
+  template void K::read_impulses<W>(const K::Group<W>&, int, float*); \
+  template void K::clear_impulses<W>(K::Group<W>&);
+#define SOFTSTEP_INSTANTIATE_KIND(K)    \
+  SOFTSTEP_INSTANTIATE_KIND_LANES(K, 1) \
+  SOFTSTEP_INSTANTIATE_KIND_LANES(K, 4) \
+  SOFTSTEP_INSTANTIATE_KIND_LANES(K, 8)
+
+}  // namespace softstep

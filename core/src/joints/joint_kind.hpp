@@ -1,0 +1,118 @@
+// What a joint type is to the world and the solver: a "kind", a struct of static members that
+// every registered type provides (the contract is written out below, BallKind in
+// ball_joint.hpp is the simplest example). The solver's loops, the world's joint lifecycle,
+// the plan and the state hash iterate over the registry (joint_registry.hpp) and never name
+// a type: a new type is its kernel header (simd/), its public header, its kind (.hpp + .cpp
+// here) and one line in the registry.
+//
+// The contract, for a kind K:
+//   using Def;                              the public definition (RevoluteJointDef, ...)
+//   static constexpr JointType type;
+//   template <int W> using Group;           its lane group (SoA over W lanes, an AnchorLanes first)
+//   static constexpr int kImpulses;         floats of accumulated impulse one joint keeps
+//   static constexpr std::array variants;   compiled kernel variants, [0] the general kernel
+//   static constexpr bool solves(v), relaxes(v)      whether variant v has those passes at all
+//   template <class L, std::size_t V> prepare / warm_start, template <.., bool kUseBias> solve:
+//                                           one group's pass, for kind_kernels.hpp to loop over
+//   variant(slot, specialize), signature(slot): the run a joint is packed in. A signature is a
+//                                           bit set of the parts a joint runs; runs are uniform
+//                                           in it, so kernels branch on it once per group
+//   rows(v, sig), needs_solve(v, sig), needs_relax(v, sig), plan_kernel(v, sig)
+//   effects(slot), tension(slot, impulse)
+//   template <int W> fill_lane / write_step_start / read_impulses / clear_impulses
+//   make_slot(world, call, def) (validates), def_of(world, slot), reading(...), hash(...)
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "softstep/simd/step_context.hpp"
+#include "softstep/step_plan.hpp"
+#include "softstep/world.hpp"
+
+namespace softstep {
+
+struct JointSlot;
+struct BodySlot;
+class StateHasher;
+
+// The most impulse floats any type keeps (a revolute joint with every part: 3 point, 2 lock,
+// limit lower and upper, motor, spring).
+inline constexpr int kMaxJointImpulses = 12;
+
+// The effects a joint brings into a step (StepPlan).
+struct JointEffects {
+  bool springs = false;
+  bool limits = false;
+  bool motors = false;
+};
+
+template <class... Kinds>
+struct KindList {
+  static constexpr std::size_t size = sizeof...(Kinds);
+  // Calls f.template operator()<Kind>() for each kind, in registry order.
+  template <class F>
+  static void for_each(F&& f) {
+    (f.template operator()<Kinds>(), ...);
+  }
+  // f.template operator()<Kind>() for the kind of `type`.
+  template <class F>
+  static decltype(auto) with(JointType type, F&& f) {
+    using R = decltype(f.template operator()<First>());
+    if constexpr (std::is_void_v<R>) {
+      ((Kinds::type == type ? (f.template operator()<Kinds>(), true) : false) || ...);
+    } else {
+      R result{};
+      ((Kinds::type == type ? (result = f.template operator()<Kinds>(), true) : false) || ...);
+      return result;
+    }
+  }
+  template <template <class> class T>
+  using Apply = std::tuple<T<Kinds>...>;
+  // The position of K in the list (its element in an Apply tuple).
+  template <class K>
+  static constexpr std::size_t index_of() {
+    std::size_t i = 0, found = sizeof...(Kinds);
+    ((std::is_same_v<K, Kinds> ? (found = i, ++i) : ++i), ...);
+    return found;
+  }
+  template <template <class...> class T>
+  using Expand = T<Kinds...>;
+
+ private:
+  template <class K, class...>
+  struct Head {
+    using type = K;
+  };
+  using First = typename Head<Kinds...>::type;
+};
+
+// One pass of one variant over `count` consecutive groups; nullptr where the variant has no
+// such pass (the plan does not schedule it).
+template <class Group>
+using PassFn = void (*)(Group*, std::size_t count, const simd::BodyArrays&,
+                        const simd::SubstepContext&, std::uint32_t signature);
+
+template <class Group>
+struct PassKernels {
+  PassFn<Group> prepare = nullptr;
+  PassFn<Group> warm_start = nullptr;
+  PassFn<Group> solve = nullptr;
+  PassFn<Group> relax = nullptr;
+};
+
+// The kernels of one kind at width W: one PassKernels per variant.
+template <class Kind, int W>
+using KindKernels =
+    std::array<PassKernels<typename Kind::template Group<W>>, Kind::variants.size()>;
+
+// Defined in the generated <kind>_kernels_<width>.cpp (kind_kernels.hpp builds it).
+template <class Kind, int W>
+KindKernels<Kind, W> kind_kernels();
+
+}  // namespace softstep
