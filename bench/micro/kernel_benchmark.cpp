@@ -1,5 +1,7 @@
 // Each joint kernel alone (prepare, warm start, solve, relax), at scalar, SSE (4) and AVX2
-// (8) width, on chains of 10,000 and 100,000 links and on 1,000 chains of 100 links. Uses only
+// (8) width, on chains of 10,000 and 100,000 links and on 1,000 chains of 100 links. The
+// angular types run twice: with their locks only, and with every part of their free axis
+// (limit, motor, spring), so that the difference is what those parts cost. Uses only
 // simd/ and graph_coloring/: the layers the issue asks to benchmark alone. The figure to
 // read is ns_per_row: time per constraint row for one pass of the kernel over all joints.
 //
@@ -11,6 +13,9 @@
 #include "softstep/graph_coloring/graph_coloring.hpp"
 #include "softstep/simd/ball_joint_kernel.hpp"
 #include "softstep/simd/distance_joint_kernel.hpp"
+#include "softstep/simd/prismatic_joint_kernel.hpp"
+#include "softstep/simd/revolute_joint_kernel.hpp"
+#include "softstep/simd/weld_joint_kernel.hpp"
 
 namespace softstep::simd {
 namespace {
@@ -77,11 +82,22 @@ Packed<Group, W> pack_chains(int total_links, int chain_length) {
       g.r_a[0][lane] = 0.5f * kSpacing;
       g.r_b[0][lane] = -0.5f * kSpacing;
       g.center_delta[0][lane] = kSpacing * 1.01f;  // a little stretched: the bias is not zero
-      g.hertz[lane] = kRigidHertz;
+      if constexpr (requires { g.hertz; }) g.hertz[lane] = kRigidHertz;
       if constexpr (requires { g.rest_length; }) {
         g.r_a[0][lane] = g.r_b[0][lane] = 0.0f;
         g.rest_length[lane] = kSpacing;
         g.max_length[lane] = kSpacing;
+      }
+      if constexpr (requires { g.frame_a; }) {  // frames at identity: hinge or slide along z
+        g.frame_a[3][lane] = g.frame_b[3][lane] = 1.0f;
+      }
+      if constexpr (requires { g.axis; }) {  // limits around 0, a motor and a spring
+        g.axis.lower_gap[lane] = 0.5f;
+        g.axis.upper_gap[lane] = 0.5f;
+        g.axis.motor_speed[lane] = 1.0f;
+        g.axis.motor_max[lane] = 10.0f;
+        g.axis.spring_hertz[lane] = 2.0f;
+        g.axis.spring_zeta[lane] = 0.5f;
       }
     }
   }
@@ -93,43 +109,70 @@ const SubstepContext kContext{1.0f / 240.0f, 240.0f, make_softness(60.0f, 2.0f, 
 
 enum class Stage { Prepare, WarmStart, Solve, Relax };
 
-// F: the kernel variant. Every lane of these chains is rigid with no limit row, so the
-// general kernel (the default) and the rigid variant compute the same thing: their ratio is
-// what specializing saves.
-template <class L, template <int> class Group, Stage S, JointFeatures F = kGeneralKernel>
+// One kernel's passes over one group, and its rows per joint with signature `sig`.
+template <template <int> class Group>
+struct Kernel;
+template <>
+struct Kernel<BallJointGroup> {
+  template <class L, JointFeatures F, Stage S>
+  static void run(BallJointGroup<kWidth<L>>& g, const BodyArrays& b, std::uint32_t) {
+    if constexpr (S == Stage::Prepare) prepare_ball_joints<L, F>(g, kContext);
+    if constexpr (S == Stage::WarmStart) warm_start_ball_joints<L, F>(g, b);
+    if constexpr (S == Stage::Solve) solve_ball_joints<L, true, F>(g, b);
+    if constexpr (S == Stage::Relax) solve_ball_joints<L, false, F>(g, b);
+  }
+  static double rows(std::uint32_t) { return 3.0; }
+};
+template <>
+struct Kernel<DistanceJointGroup> {
+  template <class L, JointFeatures F, Stage S>
+  static void run(DistanceJointGroup<kWidth<L>>& g, const BodyArrays& b, std::uint32_t) {
+    if constexpr (S == Stage::Prepare) prepare_distance_joints<L, F>(g, kContext);
+    if constexpr (S == Stage::WarmStart) warm_start_distance_joints<L, F>(g, b);
+    if constexpr (S == Stage::Solve) solve_distance_joints<L, true, F>(g, b, kContext);
+    if constexpr (S == Stage::Relax) solve_distance_joints<L, false, F>(g, b, kContext);
+  }
+  static double rows(std::uint32_t) { return 1.0; }
+};
+// The angular types: one kernel, parts by signature.
+#define SOFTSTEP_ANGULAR_KERNEL(GROUP, NAME, ROWS)                                           \
+  template <>                                                                                \
+  struct Kernel<GROUP> {                                                                     \
+    template <class L, JointFeatures, Stage S>                                               \
+    static void run(GROUP<kWidth<L>>& g, const BodyArrays& b, std::uint32_t sig) {           \
+      if constexpr (S == Stage::Prepare) prepare_##NAME##_joints<L>(g, kContext, sig);       \
+      if constexpr (S == Stage::WarmStart) warm_start_##NAME##_joints<L>(g, b, sig);         \
+      if constexpr (S == Stage::Solve) solve_##NAME##_joints<L, true>(g, b, kContext, sig);  \
+      if constexpr (S == Stage::Relax) solve_##NAME##_joints<L, false>(g, b, kContext, sig); \
+    }                                                                                        \
+    static double rows(std::uint32_t sig) { return ROWS; }                                   \
+  }
+constexpr std::uint32_t kAllAxisParts = kAxisLimit | kAxisMotor | kAxisSpring;
+SOFTSTEP_ANGULAR_KERNEL(RevoluteJointGroup, revolute, sig == 0 ? 5.0 : 9.0);
+SOFTSTEP_ANGULAR_KERNEL(PrismaticJointGroup, prismatic, sig == 0 ? 5.0 : 9.0);
+SOFTSTEP_ANGULAR_KERNEL(WeldJointGroup, weld, (void(sig), 6.0));
+
+// F: the kernel variant of ball and distance joints. Every lane of these chains is rigid with
+// no limit row, so the general kernel (the default) and the rigid variant compute the same
+// thing: their ratio is what specializing saves. Sig: the angular types' parts (0: locks only).
+template <class L, template <int> class Group, Stage S, JointFeatures F = kGeneralKernel,
+          std::uint32_t Sig = 0>
 void run(benchmark::State& state) {
   constexpr int W = kWidth<L>;
   auto p =
       pack_chains<Group, W>(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   const BodyArrays arrays = p.bodies.arrays();
   for (auto& color : p.colors) {
-    for (auto& g : color) {
-      if constexpr (std::is_same_v<Group<W>, BallJointGroup<W>>)
-        prepare_ball_joints<L>(g, kContext);
-      else
-        prepare_distance_joints<L>(g, kContext);
-    }
+    for (auto& g : color)
+      Kernel<Group>::template run<L, kGeneralKernel, Stage::Prepare>(g, arrays, Sig);
   }
   for (auto _ : state) {
     for (auto& color : p.colors) {
-      for (auto& g : color) {
-        if constexpr (std::is_same_v<Group<W>, BallJointGroup<W>>) {
-          if constexpr (S == Stage::Prepare) prepare_ball_joints<L, F>(g, kContext);
-          if constexpr (S == Stage::WarmStart) warm_start_ball_joints<L, F>(g, arrays);
-          if constexpr (S == Stage::Solve) solve_ball_joints<L, true, F>(g, arrays);
-          if constexpr (S == Stage::Relax) solve_ball_joints<L, false, F>(g, arrays);
-        } else {
-          if constexpr (S == Stage::Prepare) prepare_distance_joints<L, F>(g, kContext);
-          if constexpr (S == Stage::WarmStart) warm_start_distance_joints<L, F>(g, arrays);
-          if constexpr (S == Stage::Solve) solve_distance_joints<L, true, F>(g, arrays, kContext);
-          if constexpr (S == Stage::Relax) solve_distance_joints<L, false, F>(g, arrays, kContext);
-        }
-      }
+      for (auto& g : color) Kernel<Group>::template run<L, F, S>(g, arrays, Sig);
     }
     benchmark::ClobberMemory();
   }
-  const double rows =
-      static_cast<double>(p.joints) * (std::is_same_v<Group<W>, BallJointGroup<W>> ? 3.0 : 1.0);
+  const double rows = static_cast<double>(p.joints) * Kernel<Group>::rows(Sig);
   state.counters["ns_per_row"] = benchmark::Counter(
       rows * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
@@ -154,6 +197,23 @@ SOFTSTEP_KERNEL_BENCH(BallJointGroup, Relax);
 SOFTSTEP_KERNEL_BENCH(DistanceJointGroup, Prepare);
 SOFTSTEP_KERNEL_BENCH(DistanceJointGroup, Solve);
 SOFTSTEP_KERNEL_BENCH(DistanceJointGroup, Relax);
+SOFTSTEP_KERNEL_BENCH(RevoluteJointGroup, Solve);
+SOFTSTEP_KERNEL_BENCH(RevoluteJointGroup, Relax);
+SOFTSTEP_KERNEL_BENCH(PrismaticJointGroup, Solve);
+SOFTSTEP_KERNEL_BENCH(PrismaticJointGroup, Relax);
+SOFTSTEP_KERNEL_BENCH(WeldJointGroup, Solve);
+SOFTSTEP_KERNEL_BENCH(WeldJointGroup, Relax);
+
+// The angular types with every part of their free axis (limit, motor, spring).
+#define SOFTSTEP_ALL_PARTS_BENCH(GROUP, STAGE)                              \
+  BENCHMARK(run<float, GROUP, Stage::STAGE, kGeneralKernel, kAllAxisParts>) \
+      ->Name(#GROUP "/" #STAGE "/scalar/all_parts")                         \
+      ->Apply(scenes);                                                      \
+  BENCHMARK(run<Avx2, GROUP, Stage::STAGE, kGeneralKernel, kAllAxisParts>)  \
+      ->Name(#GROUP "/" #STAGE "/avx2/all_parts")                           \
+      ->Apply(scenes)
+SOFTSTEP_ALL_PARTS_BENCH(RevoluteJointGroup, Solve);
+SOFTSTEP_ALL_PARTS_BENCH(PrismaticJointGroup, Solve);
 
 // The rigid variant of the same kernels (no per-lane spring switch, no limit rows).
 constexpr JointFeatures kRigid{RowKind::Rigid, false, false};

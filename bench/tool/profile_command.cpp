@@ -33,8 +33,9 @@ const std::string kProfileUsage =
 
 namespace {
 
-// "rigid", "soft + min + max", "any (general)", ...
+// "rigid", "soft + min + max", "any (general)", "point + hinge lock + limits", ...
 std::string kernel_features(const PlanKernel& k) {
+  if (k.type != JointType::Ball && k.type != JointType::Distance) return k.parts;
   if (k.row == SpringRow::Any) return "general (per-lane switches)";
   std::string text = spring_row_name(k.row);
   if (k.lower_limit) text += " + min";
@@ -54,6 +55,7 @@ void print_plan(const StepPlan& plan) {
   effect(plan.damping, "damping");
   effect(plan.springs, "springs");
   effect(plan.limits, "limits");
+  effect(plan.motors, "motors");
   effect(plan.warm_start, "warm start");
   effect(plan.kinematic_bodies, "kinematic bodies");
   effect(plan.unconstrained_bodies, "bodies without joints");
@@ -66,7 +68,7 @@ void print_plan(const StepPlan& plan) {
               plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
   std::printf("  kernel variants (type, features: batches, joints)\n");
   for (const PlanKernel& k : plan.kernels) {
-    std::printf("    %-9s %-28s %8u batches %9u joints\n", joint_type_name(k.type),
+    std::printf("    %-9s %-40s %8u batches %9u joints\n", joint_type_name(k.type),
                 kernel_features(k).c_str(), k.batches, k.joints);
   }
 }
@@ -93,6 +95,7 @@ JsonObject plan_json(const StepPlan& plan) {
     o.add_string("spring_row", spring_row_name(k.row));
     o.add("lower_limit", k.lower_limit);
     o.add("upper_limit", k.upper_limit);
+    o.add_string("parts", k.parts);
     o.add("rows_per_joint", k.rows_per_joint);
     o.add("batches", k.batches);
     o.add("joints", k.joints);

@@ -12,6 +12,8 @@ namespace softstep::metrics {
 // 1/2 C^T k C with k = omega^2 K^-1 (K = J M^-1 J^T of its rows now, talk 3:1): the stiffness
 // the solver gives it. Rigid rows store nothing (their softness is the solver's, not the
 // scene's), so this is conserved by scenes of rigid joints and undamped springs.
+// Ball and distance joints only (std::invalid_argument for the angular types, whose rows the
+// references do not model yet).
 double mechanical_energy(const World& world, std::span<const BodyId> bodies,
                          std::span<const JointId> joints);
 

@@ -42,7 +42,8 @@ struct SoftSystem {
 };
 
 // The first sub-step of the world's last step. Throws std::logic_error when the world has no
-// capture, std::invalid_argument for a distance joint with limit rows.
+// capture, std::invalid_argument for a distance joint with limit rows or a joint of a type
+// other than ball and distance (their rows are not modelled here yet).
 SoftSystem first_substep_system(const World& world);
 
 struct ExactSolution {

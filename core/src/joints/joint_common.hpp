@@ -33,6 +33,13 @@ WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j);
   template void K::fill_lane<W>(K::Group<W>&, int, const JointSlot&); \
   template void K::read_impulses<W>(const K::Group<W>&, int, float*); \
   template void K::clear_impulses<W>(K::Group<W>&);
+// write_step_start, for the kinds that define it in their .cpp.
+#define SOFTSTEP_INSTANTIATE_STEP_START(K)                            \
+  template void K::write_step_start<1>(K::Group<1>&, int, JointSlot&, \
+                                       const std::vector<BodySlot>&); \
+  template void K::write_step_start<4>(K::Group<4>&, int, JointSlot&, \
+                                       const std::vector<BodySlot>&); \
+  template void K::write_step_start<8>(K::Group<8>&, int, JointSlot&, const std::vector<BodySlot>&);
 #define SOFTSTEP_INSTANTIATE_KIND(K)    \
   SOFTSTEP_INSTANTIATE_KIND_LANES(K, 1) \
   SOFTSTEP_INSTANTIATE_KIND_LANES(K, 4) \

@@ -65,10 +65,11 @@ struct KindList {
   static decltype(auto) with(JointType type, F&& f) {
     using R = decltype(f.template operator()<First>());
     if constexpr (std::is_void_v<R>) {
-      ((Kinds::type == type ? (f.template operator()<Kinds>(), true) : false) || ...);
+      (void)((Kinds::type == type ? (f.template operator()<Kinds>(), true) : false) || ...);
     } else {
       R result{};
-      ((Kinds::type == type ? (result = f.template operator()<Kinds>(), true) : false) || ...);
+      (void)((Kinds::type == type ? (result = f.template operator()<Kinds>(), true) : false) ||
+             ...);
       return result;
     }
   }

@@ -7,10 +7,20 @@
 
 #include "joints/ball_joint.hpp"
 #include "joints/distance_joint.hpp"
+#include "joints/prismatic_joint.hpp"
+#include "joints/revolute_joint.hpp"
+#include "joints/weld_joint.hpp"
 
 namespace softstep {
 
-using JointKinds = KindList<BallKind, DistanceKind>;
+// clang-format off
+using JointKinds = KindList<
+    BallKind,
+    DistanceKind,
+    RevoluteKind,
+    PrismaticKind,
+    WeldKind>;
+// clang-format on
 
 template <class... Kinds>
 using DefVariant = std::variant<typename Kinds::Def...>;

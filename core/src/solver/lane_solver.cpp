@@ -64,6 +64,9 @@ void write_anchors(simd::AnchorLanes<W>& g, int lane, const JointSlot& j,
   }
 }
 
+// A pass of the kernel tables, the same member of every kind's PassKernels.
+enum class PassName { prepare, warm_start, solve, relax };
+
 template <class Batches>
 bool empty(const Batches& batches) {
   bool none = true;
@@ -204,12 +207,8 @@ class LaneSolverImpl final : public LaneSolver {
   }
 
  private:
-  // A pass of the kernel tables, the same member of every kind's PassKernels.
-  struct PassName {
-    enum Which { prepare, warm_start, solve, relax };
-  };
   template <class Group>
-  static PassFn<Group> pass_of(const PassKernels<Group>& k, PassName::Which which) {
+  static PassFn<Group> pass_of(const PassKernels<Group>& k, PassName which) {
     switch (which) {
       case PassName::prepare:
         return k.prepare;
@@ -227,7 +226,7 @@ class LaneSolverImpl final : public LaneSolver {
   // of the run's variant; a variant without the pass is skipped.
   template <int V>
   static void run_share(ColorBatches<V>& c, const KernelTable<V>& table, const solver::Share& share,
-                        PassName::Which pass, const simd::BodyArrays& arrays,
+                        PassName pass, const simd::BodyArrays& arrays,
                         const simd::SubstepContext& ctx) {
     JointKinds::for_each([&]<class Kind>() {
       constexpr std::size_t k = JointKinds::index_of<Kind>();
@@ -247,7 +246,7 @@ class LaneSolverImpl final : public LaneSolver {
 
   // Colour by colour, each thread its share, a barrier after each colour (joints of the next
   // colour read bodies this one wrote); then the overflow set on thread 0, in order.
-  void run_colors(const solver::Share& share, PassName::Which pass, const simd::BodyArrays& arrays,
+  void run_colors(const solver::Share& share, PassName pass, const simd::BodyArrays& arrays,
                   const simd::SubstepContext& ctx) {
     for (auto& c : colors_) {
       run_share(c, kernels_, share, pass, arrays, ctx);
