@@ -7,6 +7,10 @@
 // ASan and TSan presets do, the portable preset does not), so there is one table for each.
 // A change that is *meant* to change these trajectories (a new default, a solver fix)
 // re-freezes them in its own commit and says why; the failure message prints the new value.
+// Re-frozen once, at the merge of issue 17: the hash then took in the spin-limit setting and
+// the bodies' pending loads, and sleep_time follows the new rest test (a body a joint still
+// moves is not at rest). With those fields left out, four of the six scenes hashed as before;
+// the grid and the limited chains differ by sleep_time.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -33,14 +37,14 @@ struct GoldenScene {
 std::vector<GoldenScene> golden_scenes() {
   return {
       {"feature zoo", [](World& w) { scenes::build_feature_zoo(w, 0.1); }, 90,
-       0x6acfbcf29170da92ull, 0x0fccac121751bdc3ull},
+       0x94529872cceb2515ull, 0x16d85db73f2d6410ull},
       {"rigid ball chain, 300 links",
        [](World& w) {
          scenes::ChainOptions o;
          o.links = 300;
          scenes::build_chain(w, o);
        },
-       60, 0xf2b0eb66c666f536ull, 0x1bac01c85ab0ed99ull},
+       60, 0xa4b5fde8af7da3c9ull, 0x5337143144e82b9aull},
       {"soft distance chains with limits, 4 x 200",
        [](World& w) {
          scenes::ChainOptions o;
@@ -52,7 +56,7 @@ std::vector<GoldenScene> golden_scenes() {
          o.max_length = 0.27;
          scenes::build_chain(w, o);
        },
-       60, 0xc74a9499abf25d9bull, 0x5a484bcef95ff5cfull},
+       60, 0x1e1ed6264cea41aeull, 0x213f8df9d0236282ull},
       {"rope, 500 links",
        [](World& w) {
          scenes::ChainOptions o;
@@ -62,7 +66,7 @@ std::vector<GoldenScene> golden_scenes() {
          o.max_length = 0.25;
          scenes::build_chain(w, o);
        },
-       60, 0x101a5da3c8f3ce5bull, 0x9e0b8376402945ccull},
+       60, 0xa1ef6861453ba708ull, 0x0677b4b267e1c45full},
       // Large enough (2,500 bodies, 4,900 joints) for a step to be shared by two threads.
       {"grid 50 x 50",
        [](World& w) {
@@ -70,7 +74,7 @@ std::vector<GoldenScene> golden_scenes() {
          o.size = 50;
          scenes::build_grid(w, o);
        },
-       30, 0x330cecdabf14707dull, 0x33696e0b2e61fd45ull},
+       30, 0xc559b04ddbb44212ull, 0x525f45f7f4029a12ull},
       {"bridge, 300 links",
        [](World& w) {
          scenes::BridgeOptions o;
@@ -78,7 +82,7 @@ std::vector<GoldenScene> golden_scenes() {
          o.loads = 5;
          scenes::build_bridge(w, o);
        },
-       60, 0xcf7fc3fd7bb35275ull, 0xc053faa8ead1f22cull},
+       60, 0x9f501a18ac7a448aull, 0xdcb87519def86197ull},
   };
 }
 

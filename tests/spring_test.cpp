@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <string>
 
+#include "expect_invalid_argument.hpp"
 #include "softstep/simd/softness.hpp"
 #include "softstep/softstep.hpp"
 
@@ -97,6 +100,28 @@ TEST(Spring, KernelSoftnessMatchesApiCoefficients) {
   const auto free = simd::make_softness(0.0f, 0.0f, 0.01f);
   EXPECT_EQ(free.mass_scale, 0.0f);
   EXPECT_EQ(free.bias_rate, 0.0f);
+}
+
+// Issue 17, bug 5: the helpers returned NaN or a rigid spring for input no spring has; they
+// reject it like every other call, naming the argument and the value.
+TEST(Spring, HelpersRejectInputNoSpringHas) {
+  const auto rejects = expect_invalid_argument;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  rejects([] { Spring::from_stiffness(-5.0, 0.0, 1.0); }, "k", "-5");
+  rejects([] { Spring::from_stiffness(5.0, -1.0, 1.0); }, "c", "-1");
+  rejects([] { Spring::from_stiffness(5.0, 0.0, 0.0); }, "effective_mass", "0");
+  rejects([nan] { Spring::from_stiffness(nan, 0.0, 1.0); }, "k", "nan");
+  rejects([] { Spring::from_erp_cfm(0.2, 0.0, 1.0, 1.0 / 60.0); }, "cfm", "0");
+  rejects([] { Spring::from_erp_cfm(1.5, 0.01, 1.0, 1.0 / 60.0); }, "erp", "1.5");
+  rejects([] { Spring::from_erp_cfm(0.2, 0.01, 1.0, 0.0); }, "h", "0");
+  rejects([] { Spring::from_erp_cfm(0.2, 0.01, -1.0, 1.0 / 60.0); }, "effective_mass", "-1");
+  rejects([] { Spring::designer(0.0, Oscillation::Some); }, "frames", "0");
+  rejects([] { Spring::designer(3.0, Oscillation::Some, -60.0); }, "frame_rate", "-60");
+  rejects([] { Spring::designer(3.0, static_cast<Oscillation>(7)); }, "oscillation", "7");
+  // What they accept stays a finite, soft spring.
+  const Spring s = Spring::from_erp_cfm(0.2, 1e-3, 1.0, 1.0 / 60.0);
+  EXPECT_TRUE(std::isfinite(s.hertz) && s.hertz > 0.0);
+  EXPECT_TRUE(std::isfinite(s.damping_ratio) && s.damping_ratio >= 0.0);
 }
 
 }  // namespace

@@ -191,6 +191,44 @@ TEST(Validation, JointRejections) {
                   "DistanceJointDef.rest_length", "-1");
 }
 
+// Issue 17, bug 6: a joint between two static bodies, or a static and a kinematic one, is
+// rejected (naming body_b and both types), and the world is unchanged.
+TEST(Validation, JointWithoutADynamicBodyIsRejected) {
+  for (BodyType other : {BodyType::Static, BodyType::Kinematic}) {
+    for (bool ball : {true, false}) {
+      Fixture f = make_world();
+      BodyDef def;
+      def.type = other;
+      def.position = {5.0, 0.0, 0.0};
+      const BodyId b = f.world.create_body(def);
+      const std::uint64_t before = f.world.state_hash();
+      const std::string field = ball ? "BallJointDef.body_b" : "DistanceJointDef.body_b";
+      try {
+        if (ball) {
+          BallJointDef j;
+          j.body_a = f.ground;
+          j.body_b = b;
+          f.world.create_ball_joint(j);
+        } else {
+          DistanceJointDef j;
+          j.body_a = b;  // either order
+          j.body_b = f.ground;
+          f.world.create_distance_joint(j);
+        }
+        ADD_FAILURE() << "a joint without a dynamic body was accepted";
+      } catch (const InvalidArgument& e) {
+        EXPECT_EQ(e.field(), field) << e.what();
+        const std::string message = e.what();
+        EXPECT_NE(message.find(other == BodyType::Static ? "static" : "kinematic"),
+                  std::string::npos)
+            << message;
+        EXPECT_NE(message.find("dynamic"), std::string::npos) << message;
+      }
+      EXPECT_EQ(f.world.state_hash(), before);
+    }
+  }
+}
+
 TEST(Validation, SetterRejections) {
   expect_rejected([](Fixture& f) { f.world.set_position(f.a, {kNan, 0, 0}); }, "position", "nan");
   expect_rejected([](Fixture& f) { f.world.set_orientation(f.a, Eigen::Quaterniond(0, 0, 0, 0)); },

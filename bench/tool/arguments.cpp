@@ -3,9 +3,19 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace softstep::tool {
+
+namespace {
+// 1e+09 and 0.001, not std::to_string's 1000000000.000000 and 0.001000.
+std::string readable(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+}  // namespace
 
 Arguments::Arguments(std::span<char* const> args)
     : words_(args.begin(), args.end()), used_(words_.size(), false) {}
@@ -103,8 +113,8 @@ double Arguments::take_double(const std::string& flag, double fallback, double m
   char* end = nullptr;
   const double x = std::strtod(v.c_str(), &end);
   if (end == v.c_str() || *end != '\0' || !std::isfinite(x) || x < min || x > max) {
-    throw UsageError(flag + " " + v + ": expected a number in [" + std::to_string(min) + ", " +
-                     std::to_string(max) + "]");
+    throw UsageError(flag + " " + v + ": expected a number in [" + readable(min) + ", " +
+                     readable(max) + "]");
   }
   return x;
 }

@@ -17,14 +17,17 @@ namespace softstep::tool {
 
 const std::string kProfileUsage =
     std::string(
-        "usage: softstep profile [chain|grid|bridge|hinge-chain|prismatic-stack] [scene options] [--steps S]\n"
-        "                        [--substeps N] [--iterations N] [--relax N] [--threads T] [--simd "
-        "scalar|sse|avx2]\n"
+        "usage: softstep profile [chain|grid|bridge|hinge-chain|prismatic-stack] [scene options]\n"
+        "                        [--steps S] [--substeps N] [--iterations N] [--relax N] [--threads T]\n"
+        "                        [--threads-fixed] [--simd scalar|sse|avx2]\n"
         "                        [--no-warm-start] [--no-sleep] [--general] [--plan]\n"
         "                        [--json FILE] [--csv FILE] [--trace FILE]\n") +
     kSceneUsage + "\n" + kJointSceneUsage +
     "\n  Stepped S times at 60 Hz (default 300).\n"
     "  --plan        print the step plan of the last step: effects, stages, kernel variants;\n"
+    "  --threads T   at most T threads (0: all cores); each step runs on one or T, whichever ran\n"
+    "                recent steps faster, and on one below 4,096 bodies and joints;\n"
+    "  --threads-fixed  every step on exactly T threads (no adaptive choice);\n"
     "  --general     every joint on the general kernel and every stage run (the baseline);\n"
     "  --no-sleep    islands at rest stay awake;\n"
     "  --json FILE   the figures as one JSON object (with the plan); --csv FILE   one row per "
@@ -53,6 +56,7 @@ void print_plan(const StepPlan& plan) {
   };
   effect(plan.gravity, "gravity");
   effect(plan.damping, "damping");
+  effect(plan.forces, "forces");
   effect(plan.springs, "springs");
   effect(plan.limits, "limits");
   effect(plan.motors, "motors");
@@ -82,6 +86,7 @@ JsonObject plan_json(const StepPlan& plan) {
   JsonObject effects;
   effects.add("gravity", plan.gravity);
   effects.add("damping", plan.damping);
+  effects.add("forces", plan.forces);
   effects.add("springs", plan.springs);
   effects.add("limits", plan.limits);
   effects.add("warm_start", plan.warm_start);
@@ -121,6 +126,7 @@ int profile_command(Arguments& args) {
   settings.solve_iterations = static_cast<int>(args.take_int("--iterations", 1, 1, 1000));
   settings.relax_iterations = static_cast<int>(args.take_int("--relax", 1, 0, 1000));
   settings.threads = static_cast<int>(args.take_int("--threads", 0, 0, 256));  // 0: all cores
+  settings.fixed_threads = args.take_switch("--threads-fixed");
   settings.simd = parse_simd(args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best"));
   settings.warm_start = !args.take_switch("--no-warm-start");
   settings.sleeping = !args.take_switch("--no-sleep");
@@ -130,6 +136,9 @@ int profile_command(Arguments& args) {
   const std::string csv_path = args.take_string("--csv", "");
   const std::string trace_path = args.take_string("--trace", "");
   args.reject_leftovers();
+  check_writable_file("--json", json_path);
+  check_writable_file("--csv", csv_path);
+  check_writable_file("--trace", trace_path);
   std::vector<CsvRow> csv_rows;
 
   World world(settings);

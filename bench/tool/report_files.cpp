@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
+
+#include "tool/arguments.hpp"
 
 namespace softstep::tool {
 
@@ -77,6 +80,27 @@ void write_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
   if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+void check_writable_file(const std::string& flag, const std::string& path) {
+  if (path.empty()) return;
+  std::error_code ec;
+  const bool existed = std::filesystem::exists(path, ec);
+  // Append mode creates the file without truncating one that is there.
+  const bool ok = std::ofstream(path, std::ios::binary | std::ios::app).good();
+  if (!existed) std::filesystem::remove(path, ec);
+  if (!ok) throw UsageError(flag + " " + path + ": cannot write a file there");
+}
+
+void check_writable_directory(const std::string& flag, const std::string& directory) {
+  std::error_code ec;
+  std::filesystem::create_directories(directory, ec);
+  if (ec || !std::filesystem::is_directory(directory)) {
+    throw UsageError(flag + " " + directory + ": cannot create the directory (" +
+                     (ec ? ec.message() : std::string("a file is in the way")) + ")");
+  }
+  const std::string probe = (std::filesystem::path(directory) / ".softstep_write_check").string();
+  check_writable_file(flag, probe);
 }
 
 double median(std::vector<double> v) {

@@ -40,4 +40,10 @@ class Trace {
 // Throws std::runtime_error naming the path when the file cannot be written.
 void write_file(const std::string& path, const std::string& text);
 
+// Checked before a run, so that a run of minutes does not end in "cannot write": throw
+// UsageError naming the flag and the path when a file cannot be created there (an existing
+// file is left as it is), or the directory cannot be created and written into.
+void check_writable_file(const std::string& flag, const std::string& path);
+void check_writable_directory(const std::string& flag, const std::string& directory);
+
 }  // namespace softstep::tool

@@ -61,10 +61,11 @@ SceneChoice take_scene_options(Arguments& args) {
   c.bridge.loads = static_cast<int>(args.take_int("--loads", 10, 0, c.bridge.span));
   c.bridge.load_mass = args.take_double("--load-mass", 50.0, 1e-3, 1e9);
   const bool soft = args.has("--hertz");
-  const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
-  const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
+  // Checked before take_double consumes --zeta (has() sees only flags not yet taken).
   if (!soft && args.has("--zeta"))
     throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
+  const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
+  const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
   c.chain.spring = c.grid.spring = c.bridge.spring =
       soft ? Spring::soft(hertz, zeta) : Spring::rigid();
   c.spring_text = soft ? "spring " + format_number(hertz) + " Hz, zeta " + format_number(zeta)

@@ -139,6 +139,7 @@ int sweep_command(Arguments& args) {
       static_cast<int>(args.take_int("--reference-iterations", 4, 1, 1000));
   const long probes = args.take_int("--probes", 4, 0, steps);
   args.reject_leftovers();
+  check_writable_directory("--out", out);
 
   std::vector<bool> warm_choices;
   for (const std::string& w : {std::string("on"), std::string("off")}) {

@@ -4,6 +4,8 @@
 // rest pays nothing per step for sleeping and an awake world pays one pass over its awake
 // bodies. Everything runs on one thread in slot order: deterministic.
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "world_impl.hpp"
 
@@ -73,11 +75,22 @@ void World::Impl::update_sleep(double dt) {
   if (!settings.sleeping) return;
   const WorldSettings& st = settings;
   const std::vector<std::uint32_t>& awake = solver_bodies.movable;
+  // A body rests when both its velocity and what the step moved it are below the sleep
+  // speeds. The velocity alone is not enough: a joint left wide open (created apart, or
+  // stretched) is closed by the solve pass's bounded correction, and the relax pass then
+  // takes that speed out again, so the body moves every step while its velocity reads
+  // zero; it fell asleep 1.6 m from its anchor and stayed there (issue 17, bug 2).
+  const double moved = st.sleep_linear_speed * dt;
+  const double turned =
+      std::sin(std::min(0.5 * st.sleep_angular_speed * dt, 0.5 * std::numbers::pi));
+  const float moved2 = static_cast<float>(moved * moved);
+  const float turned2 = static_cast<float>(turned * turned);
   bool ready = false;
   for (std::uint32_t s : awake) {
     BodySlot& b = bodies[s];
     const bool resting = !b.never_sleep && b.linear_velocity.norm() <= st.sleep_linear_speed &&
-                         b.angular_velocity.norm() <= st.sleep_angular_speed;
+                         b.angular_velocity.norm() <= st.sleep_angular_speed &&
+                         b.step_moved2 <= moved2 && b.step_turned2 <= turned2;
     b.sleep_time = resting ? b.sleep_time + dt : 0.0;
     ready |= b.sleep_time >= st.time_to_sleep;
   }

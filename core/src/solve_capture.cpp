@@ -6,7 +6,7 @@
 namespace softstep {
 
 namespace {
-using Velocity6 = Eigen::Matrix<double, 6, 1>;
+using Velocity6 = Vector6;
 
 void copy_velocities(const SolverBodies& sb, std::vector<Velocity6>& into) {
   for (const std::uint32_t s : sb.movable) {

@@ -3,15 +3,38 @@
 #include <cmath>
 #include <numbers>
 
+#include "validation.hpp"
+
 namespace softstep {
 
 namespace {
 double omega_of(double hertz) {
   return 2.0 * std::numbers::pi * hertz;
 }
+
+// The helpers' arguments: a spring that is none of these (NaN, negative, a zero that makes
+// the spring rigid or its damping NaN) is rejected rather than returned (issue 17).
+void check_positive(const char* call, const char* field, double value) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    validation::reject(call, field, validation::format(value), "must be finite and > 0");
+  }
+}
+void check_non_negative(const char* call, const char* field, double value) {
+  if (!(std::isfinite(value) && value >= 0.0)) {
+    validation::reject(call, field, validation::format(value), "must be finite and >= 0");
+  }
+}
 }  // namespace
 
 Spring Spring::designer(double frames, Oscillation oscillation, double frame_rate) {
+  const char* call = "Spring::designer";
+  check_positive(call, "frames", frames);
+  check_positive(call, "frame_rate", frame_rate);
+  if (oscillation != Oscillation::Free && oscillation != Oscillation::Some &&
+      oscillation != Oscillation::None) {
+    validation::reject(call, "oscillation", std::to_string(static_cast<int>(oscillation)),
+                       "must be Oscillation::Free, Some or None");
+  }
   const double zeta = oscillation == Oscillation::Free   ? 0.0
                       : oscillation == Oscillation::Some ? 0.5
                                                          : 1.0;
@@ -19,6 +42,10 @@ Spring Spring::designer(double frames, Oscillation oscillation, double frame_rat
 }
 
 Spring Spring::from_stiffness(double k, double c, double effective_mass) {
+  const char* call = "Spring::from_stiffness";
+  check_non_negative(call, "k", k);
+  check_non_negative(call, "c", c);
+  check_positive(call, "effective_mass", effective_mass);
   if (k == 0.0) return free();
   const double omega = std::sqrt(k / effective_mass);
   return {omega / (2.0 * std::numbers::pi), c / (2.0 * effective_mass * omega)};
@@ -27,6 +54,13 @@ Spring Spring::from_stiffness(double k, double c, double effective_mass) {
 Spring Spring::from_erp_cfm(double erp, double cfm, double effective_mass, double h) {
   // Talk 2:3:2 inverted: CFM = gamma = 1/(c + h k) and ERP = beta = h k/(c + h k) give
   // h k = ERP / CFM and c = 1/CFM - h k.
+  const char* call = "Spring::from_erp_cfm";
+  if (!(erp >= 0.0 && erp <= 1.0)) {
+    validation::reject(call, "erp", validation::format(erp), "must be in [0, 1]");
+  }
+  check_positive(call, "cfm", cfm);
+  check_positive(call, "effective_mass", effective_mass);
+  check_positive(call, "h", h);
   const double k = erp / (h * cfm);
   const double c = (1.0 - erp) / cfm;
   return from_stiffness(k, c, effective_mass);

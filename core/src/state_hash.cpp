@@ -16,6 +16,7 @@ std::uint64_t World::state_hash() const {
   h.value(s.substeps);
   h.value(s.solve_iterations);
   h.value(s.max_linear_speed);
+  h.value(s.max_rotation_per_substep);
   h.value(s.relax_iterations);
   h.value(s.warm_start);
   h.value(s.rigid_hertz);
@@ -43,6 +44,8 @@ std::uint64_t World::state_hash() const {
     h.value(b.gravity_scale);
     h.value(b.linear_damping);
     h.value(b.angular_damping);
+    h.matrix(b.force);
+    h.matrix(b.torque);
     for (std::uint32_t j : b.joints) h.value(j);
     h.value(b.never_sleep);
     h.value(b.asleep);

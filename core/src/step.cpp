@@ -35,6 +35,9 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
       simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
   ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
   ctx.max_linear_speed = static_cast<float>(s.max_linear_speed);
+  // Rounded to float before dividing, as the constant it replaced was: pi/4 gives the same
+  // bound bit for bit.
+  ctx.max_angular_speed = static_cast<float>(s.max_rotation_per_substep) / h;
   return ctx;
 }
 
@@ -53,6 +56,7 @@ int step_threads(World::Impl& w) {
   constexpr long kProbeEvery = 64;
   static const int machine_cores = std::max(1, omp_get_num_procs());
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
+  if (w.settings.fixed_threads) return allowed;  // the user's count, not the policy's
   // Sleeping bodies and joints are no work.
   const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3;
   if (allowed <= 1 || work < kMinWorkToShare) return 1;
@@ -63,6 +67,29 @@ int step_threads(World::Impl& w) {
   const bool all_faster = p.ms[1] < p.ms[0];
   const bool probe = p.steps % kProbeEvery == 0;
   return all_faster != probe ? allowed : 1;
+}
+
+// A step's threads on the host's job system: workers 1 .. n-1 are enqueued, the calling
+// thread is worker 0, and finish waits for each. Every worker runs the same stages on the same
+// Share as under OpenMP, so the result is the same bit for bit.
+template <class Run>
+void run_on_host_tasks(const TaskCallbacks& tasks, int threads, Run& run) {
+  solver::StepBarrier barrier(threads);
+  struct Job {
+    Run* run;
+    solver::StepBarrier* barrier;
+    int threads;
+  } job{&run, &barrier, threads};
+  const TaskCallbacks::Task task = [](int worker, void* context) {
+    Job& j = *static_cast<Job*>(context);
+    (*j.run)(solver::Share{worker, j.threads, nullptr, j.barrier});
+  };
+  std::vector<void*> handles;
+  for (int worker = 1; worker < threads; ++worker) {
+    handles.push_back(tasks.enqueue(task, worker, &job, tasks.user_context));
+  }
+  run(solver::Share{0, threads, nullptr, &barrier});
+  for (void* handle : handles) tasks.finish(handle, tasks.user_context);
 }
 
 void record_step_time(World::Impl& w, int threads, double ms) {
@@ -159,6 +186,7 @@ void World::Impl::refresh_inertia(const solver::Share& share) {
 
 void World::Impl::prepare_bodies(float h, const solver::Share& share) {
   SolverBodies& sb = solver_bodies;
+  const bool forces = plan.forces;
   const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
   for (std::size_t index = mine.begin; index < mine.end; ++index) {
     const std::uint32_t s = sb.movable[index];
@@ -174,11 +202,18 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
     simd::ForceRecord& f = sb.force[i];
     if (b.type == BodyType::Dynamic) {
       m = mass_record(b, extra_inertia_on ? extra_inertia[s] : 0.0);
-      const Eigen::Vector3d g = settings.gravity * b.gravity_scale;
+      Eigen::Vector3d g = settings.gravity * b.gravity_scale;
+      Eigen::Vector3d alpha = Eigen::Vector3d::Zero();
+      if (forces) {  // the applied force and torque, with the body's own inertia
+        g += b.force / b.mass;
+        const Eigen::Matrix3d r = b.orientation.toRotationMatrix();
+        alpha = r * (b.inverse_inertia * (r.transpose() * b.torque));
+      }
       f = {{static_cast<float>(g.x()), static_cast<float>(g.y()), static_cast<float>(g.z())},
            static_cast<float>(1.0 / (1.0 + h * b.linear_damping)),
            static_cast<float>(1.0 / (1.0 + h * b.angular_damping)),
-           {0, 0, 0}};
+           {static_cast<float>(alpha.x()), static_cast<float>(alpha.y()),
+            static_cast<float>(alpha.z())}};
     } else {
       m = simd::MassRecord{};
       f = simd::ForceRecord{{0, 0, 0}, 1.0f, 1.0f, {0, 0, 0}};
@@ -195,6 +230,8 @@ void World::Impl::finalize_bodies(const solver::Share& share) {
     const simd::VelocityRecord& v = sb.velocity[s + 1];
     const simd::DeltaRecord& d = sb.delta[s + 1];
     b.position += Eigen::Vector3d(d.dp[0], d.dp[1], d.dp[2]);
+    b.step_moved2 = d.dp[0] * d.dp[0] + d.dp[1] * d.dp[1] + d.dp[2] * d.dp[2];
+    b.step_turned2 = d.dq[0] * d.dq[0] + d.dq[1] * d.dq[1] + d.dq[2] * d.dq[2];
     const Eigen::Quaterniond dq(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
     b.orientation = (dq * b.orientation).normalized();
     // A kinematic body keeps the velocity the user gave it, not its float copy.
@@ -236,7 +273,9 @@ void World::step(double dt) {
   std::array<bool, kPlanStageCount> runs{};
   for (PlanStage p : w.plan.stages) runs[static_cast<std::size_t>(p)] = true;
   const auto planned = [&](PlanStage p) { return runs[static_cast<std::size_t>(p)]; };
-  const bool gravity = planned(PlanStage::Gravity);
+  // Applied forces ride on the gravity term (force / mass), torques on their own.
+  const bool torque = planned(PlanStage::Forces);
+  const bool gravity = planned(PlanStage::Gravity) || torque;
   const bool damping = planned(PlanStage::Damping);
   const bool capturing = w.capturing;
   if (capturing) w.capture_step_start(h, rigid_solve_hertz(s, h));
@@ -280,7 +319,7 @@ void World::step(double dt) {
             solver::team_barrier(share);
             w.refresh_inertia(share);  // integrate_velocities reads no mass record
           }
-          solver.integrate_velocities(w.solver_bodies, ctx, gravity, damping, share);
+          solver.integrate_velocities(w.solver_bodies, ctx, gravity, damping, torque, share);
           solver::team_barrier(share);
         });
       }
@@ -325,6 +364,8 @@ void World::step(double dt) {
   }
   if (threads == 1) {
     run(solver::Share{});
+  } else if (w.tasks.enqueue != nullptr) {
+    run_on_host_tasks(w.tasks, threads, run);
   } else {
     // The team may come out smaller than asked (OMP_THREAD_LIMIT, nested regions): the
     // barrier is sized by the first thread to know, before anyone uses it.
@@ -350,7 +391,18 @@ void World::step(double dt) {
   }
   w.last_substep = h;
   w.joints_without_history = false;
+  w.clear_forces();
   w.update_sleep(dt);
+}
+
+void World::set_task_callbacks(const TaskCallbacks& callbacks) {
+  if ((callbacks.enqueue == nullptr) != (callbacks.finish == nullptr)) {
+    validation::reject(
+        "set_task_callbacks",
+        callbacks.enqueue == nullptr ? "TaskCallbacks.enqueue" : "TaskCallbacks.finish", "nullptr",
+        "enqueue and finish are given together (both nullptr: OpenMP)");
+  }
+  impl_->tasks = callbacks;
 }
 
 void World::set_profiling(bool on) {

@@ -32,6 +32,7 @@ void World::Impl::build_plan() {
     } else {
       p.gravity |= b.gravity_scale != 0.0 && !settings.gravity.isZero(0.0);
       p.damping |= b.linear_damping > 0.0 || b.angular_damping > 0.0;
+      p.forces |= !b.force.isZero(0.0) || !b.torque.isZero(0.0);
     }
     p.unconstrained_bodies |= b.joints.empty();
   }
@@ -70,6 +71,7 @@ void World::Impl::build_plan() {
   add(joints_awake, PlanStage::PrepareJoints);
   add(bodies_awake && (all || p.gravity), PlanStage::Gravity);
   add(bodies_awake && (all || p.damping), PlanStage::Damping);
+  add(bodies_awake && (all || p.forces), PlanStage::Forces);
   add(bodies_awake, PlanStage::SpinLimit);
   add(solve && settings.warm_start, PlanStage::WarmStart);
   add(joints_awake && !settings.warm_start, PlanStage::ClearImpulses);
@@ -96,6 +98,8 @@ const char* plan_stage_name(PlanStage stage) {
       return "gravity";
     case PlanStage::Damping:
       return "damping";
+    case PlanStage::Forces:
+      return "forces";
     case PlanStage::SpinLimit:
       return "spin_limit";
     case PlanStage::WarmStart:

@@ -46,9 +46,8 @@ const char* joint_type_name(JointType type) {
 
 // ---- lookups that reject unknown ids ------------------------------------------------------
 
-std::uint32_t World::Impl::live_body(std::string_view call, std::string_view field,
-                                     BodyId id) const {
-  const World::Impl& w = *this;
+std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
+                        BodyId id) {
   if (id.index >= w.bodies.size() || !w.bodies[id.index].alive ||
       w.bodies[id.index].generation != id.generation) {
     validation::reject(
@@ -59,7 +58,7 @@ std::uint32_t World::Impl::live_body(std::string_view call, std::string_view fie
   return id.index;
 }
 
-static std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id) {
+std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id) {
   if (id.index >= w.joints.size() || !w.joints[id.index].alive ||
       w.joints[id.index].generation != id.generation) {
     validation::reject(
@@ -158,8 +157,11 @@ BodyId World::create_body(const BodyDef& def) {
   b.gravity_scale = def.gravity_scale;
   b.linear_damping = def.linear_damping;
   b.angular_damping = def.angular_damping;
+  b.force.setZero();
+  b.torque.setZero();
   b.joints.clear();
   b.never_sleep = def.never_sleep;
+  b.user_data = def.user_data;
   b.asleep = false;
   b.sleep_time = 0.0;
   ++w.body_count;
@@ -169,7 +171,7 @@ BodyId World::create_body(const BodyDef& def) {
 
 void World::destroy_body(BodyId id) {
   Impl& w = *impl_;
-  const std::uint32_t slot = w.live_body("destroy_body", "body", id);
+  const std::uint32_t slot = body_slot(w, "destroy_body", "body", id);
   w.touch(slot);  // the rest of its island may have leant on it
   const std::vector<std::uint32_t> attached = w.bodies[slot].joints;
   for (std::uint32_t j : attached) destroy_joint({j, w.joints[j].generation});
@@ -189,20 +191,20 @@ bool World::is_valid(BodyId id) const {
 }
 
 BodyState World::body(BodyId id) const {
-  const BodySlot& b = impl_->bodies[impl_->live_body("body", "body", id)];
+  const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
   return {b.type, b.position, b.orientation,   b.linear_velocity, b.angular_velocity,
           b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping};
 }
 
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {
-  const std::uint32_t slot = impl_->live_body("set_position", "body", id);
+  const std::uint32_t slot = body_slot(*impl_, "set_position", "body", id);
   validation::finite("set_position", "position", position);
   impl_->touch(slot);
   impl_->bodies[slot].position = position;
 }
 
 void World::set_orientation(BodyId id, const Quaternion& orientation) {
-  const std::uint32_t slot = impl_->live_body("set_orientation", "body", id);
+  const std::uint32_t slot = body_slot(*impl_, "set_orientation", "body", id);
   const Quaternion q = validation::unit_quaternion("set_orientation", "orientation", orientation);
   impl_->touch(slot);
   impl_->bodies[slot].orientation = q;
@@ -211,11 +213,10 @@ void World::set_orientation(BodyId id, const Quaternion& orientation) {
 namespace {
 void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen::Vector3d& velocity,
                   Eigen::Vector3d BodySlot::*member) {
-  const std::uint32_t slot = w.live_body(call, "body", id);
+  const std::uint32_t slot = body_slot(w, call, "body", id);
   validation::finite(call, "velocity", velocity);
   if (member == &BodySlot::linear_velocity) {
-    validation::linear_speed(call, "velocity", validation::format(velocity), velocity,
-                             w.settings.max_linear_speed);
+    validation::linear_speed(call, "velocity", velocity, velocity, w.settings.max_linear_speed);
   }
   if (w.bodies[slot].type == BodyType::Static && !velocity.isZero(0.0)) {
     validation::reject(call, "velocity", validation::format(velocity),
@@ -235,7 +236,7 @@ void World::set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity) {
 }
 
 void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia) {
-  const std::uint32_t slot = impl_->live_body("set_mass_properties", "body", id);
+  const std::uint32_t slot = body_slot(*impl_, "set_mass_properties", "body", id);
   BodySlot& b = impl_->bodies[slot];
   if (b.type != BodyType::Dynamic) {
     validation::reject("set_mass_properties", "body", type_name(b.type),
@@ -253,7 +254,7 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
 void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
                           const Eigen::Vector3d& world_point) {
   Impl& w = *impl_;
-  const std::uint32_t slot = w.live_body("apply_impulse", "body", id);
+  const std::uint32_t slot = body_slot(w, "apply_impulse", "body", id);
   if (w.bodies[slot].type != BodyType::Dynamic) {
     validation::reject("apply_impulse", "body", type_name(w.bodies[slot].type),
                        "only a dynamic body responds to an impulse");
@@ -272,15 +273,14 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
                        "gives the body an angular velocity beyond +-" +
                            validation::format(validation::kMaxMagnitude) + " rad/s");
   }
-  validation::linear_speed("apply_impulse", "impulse", validation::format(impulse), v,
-                           w.settings.max_linear_speed);
+  validation::linear_speed("apply_impulse", "impulse", impulse, v, w.settings.max_linear_speed);
   w.touch(slot);
   b.linear_velocity = v;
   b.angular_velocity = omega;
 }
 
 bool World::is_awake(BodyId id) const {
-  const BodySlot& b = impl_->bodies[impl_->live_body("is_awake", "body", id)];
+  const BodySlot& b = impl_->bodies[body_slot(*impl_, "is_awake", "body", id)];
   return b.type != BodyType::Static && !b.asleep;
 }
 
@@ -289,7 +289,7 @@ std::size_t World::body_count() const {
 }
 
 Eigen::Vector3d World::local_point(BodyId id, const Eigen::Vector3d& world_point) const {
-  const BodySlot& b = impl_->bodies[impl_->live_body("local_point", "body", id)];
+  const BodySlot& b = impl_->bodies[body_slot(*impl_, "local_point", "body", id)];
   validation::finite("local_point", "world_point", world_point);
   return b.orientation.conjugate() * (world_point - b.position);
 }

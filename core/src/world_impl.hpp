@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "joints/joint_registry.hpp"
@@ -30,10 +31,20 @@ struct BodySlot {
   double gravity_scale = 1.0;
   double linear_damping = 0.0;
   double angular_damping = 0.0;
+  // Applied with apply_force / apply_torque for the next step, world frame, about the centre
+  // of mass: N and N m. Cleared after that step.
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
   std::vector<std::uint32_t> joints;  // slots of the joints attached to this body
   bool never_sleep = false;
+  std::uint64_t user_data = 0;  // the caller's; never read, validated or hashed
   bool asleep = false;
-  double sleep_time = 0.0;   // s the body has stayed below the sleep speeds
+  double sleep_time = 0.0;  // s the body has stayed below the sleep speeds
+  // How far the last step moved the body: |displacement|^2 (m^2) and |rotation quaternion
+  // xyz|^2 (sin^2 of half the angle). A body that a joint's bounded correction is pulling
+  // moves while the relax pass leaves its velocity near zero: the sleep test reads both.
+  float step_moved2 = 0.0f;
+  float step_turned2 = 0.0f;
   std::uint32_t island = 0;  // while asleep: index into World::Impl::islands
 };
 
@@ -46,6 +57,7 @@ struct JointSlot {
   Eigen::Vector3d local_anchor_a = Eigen::Vector3d::Zero();
   Eigen::Vector3d local_anchor_b = Eigen::Vector3d::Zero();
   JointDefs def;  // the definition as validated: the type's own settings (joints/*_joint.cpp)
+  std::uint64_t user_data = 0;  // the caller's; never read, validated or hashed
   // Accumulated impulses kept here while the joint is not in the solver's lanes (between a
   // topology change and the next pack), in the order of its kind's read_impulses.
   std::array<float, kMaxJointImpulses> impulse{};
@@ -123,9 +135,15 @@ class LaneSolver {
   virtual void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                      const solver::Share& share) = 0;
   virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
-                                    bool gravity, bool damping, const solver::Share& share) = 0;
+                                    bool gravity, bool damping, bool torque,
+                                    const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
 };
+
+// The slot of a live body or joint; rejects unknown and destroyed ids naming `field` (world.cpp).
+std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string_view field,
+                        BodyId id);
+std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id);
 
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
 SimdWidth best_simd_width();
@@ -158,12 +176,20 @@ struct World::Impl {
     double ms[2] = {0.0, 0.0};  // recent step time with one thread [0] and with all [1]; 0 unknown
     long steps = 0;
   } thread_policy;
+  TaskCallbacks tasks;  // the host's job system; enqueue == nullptr: OpenMP
   bool profiling = false;
   StepProfile profile;  // of the last step, while profiling
   bool capturing = false;
   SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
   StepPlan plan;
   bool plan_built = false;  // false after any change of content or settings
+
+  // Bodies given a force or torque for the next step (may repeat a slot); cleared by the step.
+  std::vector<std::uint32_t> forced_bodies;
+  // Sets StepPlan::forces and its stage in a built plan without rebuilding it: forces come
+  // and go every step in a game, the rest of the content does not.
+  void plan_forces(bool on);
+  void clear_forces();  // after a step
 
   // Sleeping islands: the body slots of each, in slot order; emptied when woken.
   std::vector<std::vector<std::uint32_t>> islands;
@@ -178,8 +204,6 @@ struct World::Impl {
   void build_plan();       // packs, lists and plans if anything changed
   // The user touched this body: its island wakes, and it starts its rest time again.
   void touch(std::uint32_t body_slot);
-  // The slot of a live body, or InvalidArgument naming `field` and the id.
-  std::uint32_t live_body(std::string_view call, std::string_view field, BodyId id) const;
   void wake_island(std::uint32_t island);
   void wake_all();
   // After a step of dt: rest times, then islands whose bodies all rested time_to_sleep.

@@ -1,5 +1,6 @@
 # Installs softstep from BUILD_DIR into WORK_DIR/prefix, extracts the README's embedding
-# example into a consumer project, builds it against the installed tree and runs it.
+# example into a consumer project, builds it and reference_consumer.cpp (the accuracy
+# references across the ABI) against the installed tree and runs both.
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR}/project)
 
@@ -15,7 +16,8 @@ if(NOT found)
   message(FATAL_ERROR "README.md has no embedding example between the embed-example markers")
 endif()
 file(WRITE ${WORK_DIR}/project/main.cpp "${CMAKE_MATCH_1}")
-file(COPY ${SOURCE_DIR}/tests/consumer/CMakeLists.txt DESTINATION ${WORK_DIR}/project)
+file(COPY ${SOURCE_DIR}/tests/consumer/CMakeLists.txt ${SOURCE_DIR}/tests/consumer/reference_consumer.cpp
+     DESTINATION ${WORK_DIR}/project)
 
 execute_process(COMMAND ${CMAKE_COMMAND} -S ${WORK_DIR}/project -B ${WORK_DIR}/build
                         -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
@@ -28,8 +30,11 @@ execute_process(COMMAND ${CMAKE_COMMAND} --build ${WORK_DIR}/build RESULT_VARIAB
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "building the consumer failed")
 endif()
-execute_process(COMMAND ${WORK_DIR}/build/consumer RESULT_VARIABLE rc OUTPUT_VARIABLE out)
-message("${out}")
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "the consumer exited with ${rc}")
-endif()
+foreach(program consumer reference_consumer)
+  execute_process(COMMAND ${WORK_DIR}/build/${program} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  message("${out}${err}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the ${program} exited with ${rc}")
+  endif()
+endforeach()

@@ -2,14 +2,13 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
+
+// Quaternion (unaligned on purpose: see eigen_types.hpp). A plain Eigen::Quaterniond converts
+// to and from it implicitly.
+#include "softstep/eigen_types.hpp"
 
 namespace softstep {
-
-// Orientation at the API boundary. Unaligned on purpose: Eigen over-aligns Quaterniond by
-// the instruction set (16 bytes with SSE, 32 with AVX), so a program built without -march
-// and this library built with it would disagree on the layout of every struct holding one.
-// A plain Eigen::Quaterniond converts to and from it implicitly.
-using Quaternion = Eigen::Quaternion<double, Eigen::DontAlign>;
 
 enum class BodyType {
   Static,     // never moves, infinite mass
@@ -32,6 +31,9 @@ struct BodyDef {
   double linear_damping = 0.0;   // 1/s, >= 0: v' = -c v
   double angular_damping = 0.0;  // 1/s, >= 0
   bool never_sleep = false;      // keeps the body, and every island it joins, awake
+  // The caller's own value (an integer, or a pointer as std::uintptr_t), kept with the body
+  // and never read, validated or hashed by softstep (World::user_data).
+  std::uint64_t user_data = 0;
 };
 
 // Inertia of a solid sphere, kg m^2 (a helper for the common case).

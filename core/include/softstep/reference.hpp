@@ -16,12 +16,15 @@
 //    (ExactSolution::bounded_rows counts the rows where the bound would have acted);
 //  - distance joints with limit rows (unilateral) are rejected: only equalities are modelled;
 //  - the reference is double precision, the solver float (about 1e-6 relative rounding).
+// Its vectors are VectorX (eigen_types.hpp): created in the library, freed in the program,
+// whatever flags each was built with.
 #pragma once
 
 #include <Eigen/Sparse>
 #include <cstdint>
 #include <vector>
 
+#include "softstep/eigen_types.hpp"
 #include "softstep/world.hpp"
 
 namespace softstep::reference {
@@ -33,11 +36,11 @@ struct SoftSystem {
   Eigen::SparseMatrix<double> inverse_mass;  // 6 bodies square, block diagonal
   Eigen::SparseMatrix<double> mass;          // its inverse (0 for infinite-mass bodies)
   Eigen::SparseMatrix<double> softness;      // Gamma, rows square, block diagonal, 1/kg
-  Eigen::VectorXd bias;                      // bias_rate C per row, m/s
-  Eigen::VectorXd bias_bound;                // m/s, bound on |bias + Gamma P|: +inf for springs
-  Eigen::VectorXd velocity_before;           // v0: after gravity and damping, before the solve
-  Eigen::VectorXd velocity_after_solve;      // what the solver reached
-  Eigen::VectorXd impulse_after_solve;       // the impulses it accumulated, N s
+  VectorX bias;                              // bias_rate C per row, m/s
+  VectorX bias_bound;                        // m/s, bound on |bias + Gamma P|: +inf for springs
+  VectorX velocity_before;                   // v0: after gravity and damping, before the solve
+  VectorX velocity_after_solve;              // what the solver reached
+  VectorX impulse_after_solve;               // the impulses it accumulated, N s
   int rows() const { return static_cast<int>(bias.size()); }
 };
 
@@ -47,17 +50,16 @@ struct SoftSystem {
 SoftSystem first_substep_system(const World& world);
 
 struct ExactSolution {
-  Eigen::VectorXd velocity;  // 6 per body, as SoftSystem::body_slots
-  Eigen::VectorXd impulse;   // per row, N s
-  int bounded_rows = 0;      // rows whose bias bound the solver would have applied
+  VectorX velocity;      // 6 per body, as SoftSystem::body_slots
+  VectorX impulse;       // per row, N s
+  int bounded_rows = 0;  // rows whose bias bound the solver would have applied
 };
 ExactSolution solve_exact(const SoftSystem& system);
 
 // J v + bias + Gamma P per row, m/s: zero for the exact solution.
-Eigen::VectorXd row_residual(const SoftSystem& system, const Eigen::VectorXd& velocity,
-                             const Eigen::VectorXd& impulse);
+VectorX row_residual(const SoftSystem& system, const VectorX& velocity, const VectorX& impulse);
 // sqrt(dv^T M dv): the kinetic-energy norm of a velocity difference, sqrt(J) = sqrt(kg) m/s.
-double energy_norm(const SoftSystem& system, const Eigen::VectorXd& dv);
+double energy_norm(const SoftSystem& system, const VectorX& dv);
 // How far the solver's velocities are from the exact ones, relative to how much the exact
 // solve changes the velocities: |v - v*|_M / |v* - v0|_M (0 when v0 already solves it).
 double reference_distance(const SoftSystem& system, const ExactSolution& exact);

@@ -34,13 +34,17 @@ struct Spring {
   static Spring free() { return {0.0, 0.0}; }
   static Spring soft(double hertz, double damping_ratio) { return {hertz, damping_ratio}; }
   // Talk 3:3:1: a response within `frames` frames of a `frame_rate` Hz game (hertz =
-  // frame_rate / frames), with an oscillation choice.
+  // frame_rate / frames), with an oscillation choice. frames and frame_rate finite and > 0.
+  // Each helper throws InvalidArgument (errors.hpp) naming the argument for input no spring
+  // has, instead of returning NaN or a rigid spring.
   static Spring designer(double frames, Oscillation oscillation, double frame_rate = 60.0);
   // From a stiffness k (N/m) and damping c (N s/m) as seen by a mass `effective_mass` (kg):
   // omega = sqrt(k/m), zeta = c / (2 m omega) (talk 1:1:2). k = 0 gives a free spring.
+  // k, c finite and >= 0; effective_mass finite and > 0.
   static Spring from_stiffness(double k, double c, double effective_mass);
   // From ODE's ERP and CFM for a step h, as seen by an effective mass (talk 2:3:2 inverted:
-  // k = ERP / (h CFM), c = (1 - ERP) / CFM). CFM must be > 0.
+  // k = ERP / (h CFM), c = (1 - ERP) / CFM). ERP in [0, 1]; CFM, effective_mass and h finite
+  // and > 0.
   static Spring from_erp_cfm(double erp, double cfm, double effective_mass, double h);
 
   bool is_rigid() const { return hertz == std::numeric_limits<double>::infinity(); }

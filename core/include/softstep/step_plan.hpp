@@ -10,7 +10,7 @@
 
 namespace softstep {
 
-// Stages of a step in run order. Gravity, Damping and SpinLimit run fused in one loop over
+// Stages of a step in run order. Gravity, Damping, Forces and SpinLimit run fused in one loop over
 // the bodies (the velocity integration); a stage absent from the plan costs nothing: no
 // loop, no barrier.
 enum class PlanStage : std::uint8_t {
@@ -18,6 +18,7 @@ enum class PlanStage : std::uint8_t {
   PrepareJoints,       // anchors and softness coefficients (once per step)
   Gravity,             // per sub-step: some awake body feels gravity
   Damping,             // per sub-step: some awake body has linear or angular damping
+  Forces,              // per sub-step: some awake body has a force or torque applied
   SpinLimit,           // per sub-step: the bounds on rotation per sub-step and on speed (always)
   WarmStart,           // per sub-step: last sub-step's impulses applied
   ClearImpulses,       // per sub-step: warm starting off
@@ -26,7 +27,7 @@ enum class PlanStage : std::uint8_t {
   Relax,               // per sub-step: only with rigid rows or limit rows (springs are not relaxed)
   Store,               // poses and velocities back to the world (once per step)
 };
-inline constexpr int kPlanStageCount = 11;
+inline constexpr int kPlanStageCount = 12;
 const char* plan_stage_name(PlanStage stage);  // "prepare_bodies", "gravity", ...
 
 // What the spring row of a kernel variant is: Any is the general kernel (per-lane switches).
@@ -52,6 +53,7 @@ struct StepPlan {
   // Effects the awake content has.
   bool gravity = false;               // an awake dynamic body with gravity x gravity_scale != 0
   bool damping = false;               // an awake body with linear or angular damping
+  bool forces = false;                // an awake body with apply_force / apply_torque pending
   bool springs = false;               // an awake joint with a soft spring
   bool limits = false;                // an awake joint with a limit row
   bool motors = false;                // an awake joint with a motor

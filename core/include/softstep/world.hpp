@@ -1,6 +1,6 @@
 // The world: bodies, joints and the Soft Step solver. Not thread-safe: one thread calls it
-// at a time; step() itself uses WorldSettings::threads threads (OpenMP), with results that
-// do not depend on how many.
+// at a time; step() itself uses WorldSettings::threads threads (OpenMP, or the host's job
+// system through set_task_callbacks), with results that do not depend on how many.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +16,7 @@
 #include "softstep/joints/weld.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/step_plan.hpp"
+#include "softstep/task_callbacks.hpp"
 #include "softstep/world_settings.hpp"
 
 namespace softstep {
@@ -56,8 +57,8 @@ struct SolveCapture {
   std::vector<Quaternion> orientation;    // at the step start
   // Velocities (linear then angular, world frame) after gravity and damping, before the warm
   // start, and after the last solve pass of the first sub-step (before positions move).
-  std::vector<Eigen::Matrix<double, 6, 1>> velocity_before_solve;
-  std::vector<Eigen::Matrix<double, 6, 1>> velocity_after_solve;
+  std::vector<Vector6> velocity_before_solve;
+  std::vector<Vector6> velocity_after_solve;
   // The masses the solver used (with the geometric-stiffness inertia, if on).
   std::vector<double> inverse_mass;              // 1/kg
   std::vector<Eigen::Matrix3d> inverse_inertia;  // world frame, 1/(kg m^2)
@@ -78,6 +79,10 @@ class World {
 
   const WorldSettings& settings() const;
   void set_settings(const WorldSettings& settings);
+  // Steps on more than one thread run their workers through these callbacks instead of
+  // OpenMP (see task_callbacks.hpp for what the host must guarantee); both nullptr: OpenMP
+  // again. Rejected when only one of enqueue and finish is given.
+  void set_task_callbacks(const TaskCallbacks& callbacks);
 
   BodyId create_body(const BodyDef& def);
   // Destroys the body and every joint attached to it.
@@ -91,9 +96,16 @@ class World {
   void set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia);
   // Adds impulse (N s, world frame) at world_point to a dynamic body's velocities.
   void apply_impulse(BodyId id, const Eigen::Vector3d& impulse, const Eigen::Vector3d& world_point);
+  // Adds a force (N, world frame) acting at world_point to a dynamic body for the next step:
+  // applied in each of its sub-steps (with the torque (world_point - centre) x force), then
+  // cleared. Forces and torques given before a step add up. Wakes the body's island. A scene
+  // with none pays nothing: the plan runs the Forces stage only while some body has one.
+  void apply_force(BodyId id, const Eigen::Vector3d& force, const Eigen::Vector3d& world_point);
+  // Adds a torque (N m, world frame) to a dynamic body for the next step, as apply_force.
+  void apply_torque(BodyId id, const Eigen::Vector3d& torque);
   // False while the body's island sleeps (static bodies: always false). Setting a velocity,
-  // a pose or the mass, applying an impulse, or adding or removing a joint on the body wakes
-  // its island.
+  // a pose or the mass, applying an impulse, a force or a torque, or adding or removing a joint
+  // on the body wakes its island.
   bool is_awake(BodyId id) const;
   std::size_t body_count() const;
 
@@ -120,6 +132,18 @@ class World {
   JointType joint_type(JointId id) const;
   JointReading joint_reading(JointId id) const;
   std::size_t joint_count() const;
+
+  // Every live body or joint in slot order (the ids create_* returned): to walk the world,
+  // e.g. to copy poses into an engine's objects. Allocates the vector each call.
+  std::vector<BodyId> body_ids() const;
+  std::vector<JointId> joint_ids() const;
+  // The caller's own value per body or joint: an integer, or a pointer as std::uintptr_t. Never
+  // read, validated or hashed by softstep (setting it changes nothing the world simulates and
+  // not state_hash); 0 until set, a body's from BodyDef::user_data. Unknown ids are rejected.
+  void set_user_data(BodyId id, std::uint64_t value);
+  std::uint64_t user_data(BodyId id) const;
+  void set_user_data(JointId id, std::uint64_t value);
+  std::uint64_t user_data(JointId id) const;
 
   // Advances the world by dt seconds (> 0, finite) in settings().substeps sub-steps.
   void step(double dt);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <numbers>
 
 namespace softstep {
 
@@ -28,6 +29,10 @@ struct WorldSettings {
   // or all, whichever ran recent steps faster (see README). Results are bit-identical for
   // any count.
   int threads = 0;
+  // true: every step runs on exactly `threads` threads (0: all of the machine's cores),
+  // however small the step and however recent steps ran; for a host that has set its cores
+  // aside for the physics, or to measure. false: the adaptive choice above.
+  bool fixed_threads = false;
   bool warm_start = true;  // start each sub-step from the previous sub-step's impulses
   // Rigid rows are solved as a stiff spring (and relaxed with none). Its frequency is capped
   // at a quarter of the sub-step rate, so it cannot overshoot: Hz, > 0.
@@ -48,6 +53,17 @@ struct WorldSettings {
   // each sub-step, and rejects a velocity above it. It keeps the float solver's products in
   // range (README, "Input ranges"); 10 km/s is above anything a game throws.
   double max_linear_speed = 1e4;
+  // The spin limit: a dynamic body turns at most this far per sub-step, rad, in (0, pi/2];
+  // default pi/4, an eighth of a turn. Beyond it the solver's first-order rotation update is
+  // meaningless and an anchor off the centre swings anywhere (links of tiny inertia and chains
+  // at 1/15 s steps blew up without it). It bounds the angular speed to
+  // max_rotation_per_substep * substeps / dt each sub-step, as max_linear_speed bounds the
+  // linear one, kinematic bodies included. Unlike that fixed speed it depends on the step, so
+  // an angular velocity you set is not rejected: it is clamped. At the defaults (4 sub-steps
+  // of a 1/60 s step) it is 188.5 rad/s, at 1 sub-step 47 rad/s: a 0.35 m wheel at 47 rad/s
+  // rolls at 59 km/h. A wheel of radius r at speed v needs
+  // v / r <= max_rotation_per_substep * substeps / dt: raise the sub-steps, or this to pi/2.
+  double max_rotation_per_substep = 0.25 * std::numbers::pi;
   SimdWidth simd = SimdWidth::Best;
   // Sleeping. An island (bodies linked by joints; a static body links nothing) whose bodies
   // all stay below both speeds for time_to_sleep falls asleep: its bodies stop (velocity 0)

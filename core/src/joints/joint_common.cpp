@@ -8,11 +8,20 @@ JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::s
                              const Eigen::Vector3d& local_anchor_b) {
   const std::string prefix(def);
   JointSlot j;
-  j.body_a = w.live_body(call, prefix + ".body_a", a);
-  j.body_b = w.live_body(call, prefix + ".body_b", b);
+  j.body_a = body_slot(w, call, prefix + ".body_a", a);
+  j.body_b = body_slot(w, call, prefix + ".body_b", b);
   if (j.body_a == j.body_b) {
     validation::reject(call, prefix + ".body_b", "BodyId{" + std::to_string(b.index) + "}",
                        "a joint needs two different bodies (body_a is the same body)");
+  }
+  // Neither a static nor a kinematic body moves in response to a joint: between two of them
+  // a joint has nothing to solve, and would hold a permanent error.
+  const BodyType type_a = w.bodies[j.body_a].type, type_b = w.bodies[j.body_b].type;
+  if (type_a != BodyType::Dynamic && type_b != BodyType::Dynamic) {
+    const auto name = [](BodyType t) { return t == BodyType::Static ? "static" : "kinematic"; };
+    validation::reject(call, prefix + ".body_b",
+                       "BodyId{" + std::to_string(b.index) + "} (" + name(type_b) + ")",
+                       std::string("a joint needs a dynamic body (body_a is ") + name(type_a) + ")");
   }
   validation::finite(call, prefix + ".local_anchor_a", local_anchor_a);
   validation::finite(call, prefix + ".local_anchor_b", local_anchor_b);

@@ -110,12 +110,11 @@ ExactSolution solve_exact(const SoftSystem& s) {
   return x;
 }
 
-Eigen::VectorXd row_residual(const SoftSystem& s, const Eigen::VectorXd& velocity,
-                             const Eigen::VectorXd& impulse) {
+VectorX row_residual(const SoftSystem& s, const VectorX& velocity, const VectorX& impulse) {
   return s.jacobian * velocity + s.bias + s.softness * impulse;
 }
 
-double energy_norm(const SoftSystem& s, const Eigen::VectorXd& dv) {
+double energy_norm(const SoftSystem& s, const VectorX& dv) {
   return std::sqrt(std::max(0.0, dv.dot(s.mass * dv)));
 }
 

@@ -58,7 +58,7 @@ static inline Slice slice_of(std::size_t n, const Share& s) {
 }
 
 // Body integration over blocks of 8 records (each entry of `blocks` is a block's first
-// record), one function per combination of forces present: [gravity][damping].
+// record), one function per combination of forces present: [gravity][damping][torque].
 using IntegrateVelocities = void (*)(simd::VelocityRecord*, const simd::ForceRecord*,
                                      const std::int32_t* blocks, std::size_t count,
                                      const simd::SubstepContext&);
@@ -67,7 +67,7 @@ using IntegratePositions = void (*)(simd::DeltaRecord*, const simd::VelocityReco
 inline constexpr int kBodyBlock = 8;
 
 struct BodyKernels {
-  IntegrateVelocities integrate_velocities[2][2];
+  IntegrateVelocities integrate_velocities[2][2][2];
   IntegratePositions integrate_positions;
 };
 

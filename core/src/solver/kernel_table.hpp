@@ -4,17 +4,19 @@
 // The joint kernels are built per kind in the generated files (joints/kind_kernels.cpp.in).
 #pragma once
 
+#include <utility>
+
 #include "solver/joint_batches.hpp"
 
 namespace softstep::solver {
 
-template <class L, bool kGravity, bool kDamping>
+template <class L, bool kGravity, bool kDamping, bool kTorque>
 void integrate_velocity_blocks(simd::VelocityRecord* v, const simd::ForceRecord* f,
                                const std::int32_t* blocks, std::size_t count,
                                const simd::SubstepContext& ctx) {
   for (std::size_t i = 0; i < count; ++i) {
     for (int lane = 0; lane < kBodyBlock; lane += simd::kWidth<L>) {
-      simd::integrate_velocities<L, kGravity, kDamping>(v, f, blocks[i] + lane, ctx);
+      simd::integrate_velocities<L, kGravity, kDamping, kTorque>(v, f, blocks[i] + lane, ctx);
     }
   }
 }
@@ -22,10 +24,11 @@ void integrate_velocity_blocks(simd::VelocityRecord* v, const simd::ForceRecord*
 template <class L>
 BodyKernels make_body_kernels() {
   BodyKernels t;
-  t.integrate_velocities[0][0] = integrate_velocity_blocks<L, false, false>;
-  t.integrate_velocities[0][1] = integrate_velocity_blocks<L, false, true>;
-  t.integrate_velocities[1][0] = integrate_velocity_blocks<L, true, false>;
-  t.integrate_velocities[1][1] = integrate_velocity_blocks<L, true, true>;
+  [&]<int... I>(std::integer_sequence<int, I...>) {  // [gravity][damping][torque]
+    ((t.integrate_velocities[I >> 2][(I >> 1) & 1][I & 1] =
+          integrate_velocity_blocks<L, (I & 4) != 0, (I & 2) != 0, (I & 1) != 0>),
+     ...);
+  }(std::make_integer_sequence<int, 8>());
   t.integrate_positions = [](simd::DeltaRecord* d, const simd::VelocityRecord* v,
                              const std::int32_t* blocks, std::size_t count, float h) {
     for (std::size_t i = 0; i < count; ++i) {

@@ -193,11 +193,11 @@ class LaneSolverImpl final : public LaneSolver {
   }
 
   void integrate_velocities(SolverBodies& b, const simd::SubstepContext& ctx, bool gravity,
-                            bool damping, const solver::Share& share) override {
+                            bool damping, bool torque, const solver::Share& share) override {
     const solver::Slice mine = solver::slice_of(b.blocks.size(), share);
-    kernels_.bodies.integrate_velocities[gravity][damping](b.velocity.data(), b.force.data(),
-                                                           b.blocks.data() + mine.begin,
-                                                           mine.end - mine.begin, ctx);
+    kernels_.bodies.integrate_velocities[gravity][damping][torque](
+        b.velocity.data(), b.force.data(), b.blocks.data() + mine.begin, mine.end - mine.begin,
+        ctx);
   }
 
   void integrate_positions(SolverBodies& b, float h, const solver::Share& share) override {

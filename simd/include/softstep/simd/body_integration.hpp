@@ -11,13 +11,12 @@ namespace softstep::simd {
 // Forces a body feels during a step, precomputed so that a body with none costs nothing
 // beyond being skipped (core does not list it for this pass).
 struct alignas(32) ForceRecord {
-  float gravity[3];       // m/s^2, world gravity times the body's gravity scale
-  float linear_damping;   // 1/(1 + h c_linear), 1 = none
-  float angular_damping;  // 1/(1 + h c_angular), 1 = none
-  float unused[3];
+  // m/s^2: world gravity times the body's gravity scale, plus any applied force / mass
+  float gravity[3];
+  float linear_damping;           // 1/(1 + h c_linear), 1 = none
+  float angular_damping;          // 1/(1 + h c_angular), 1 = none
+  float angular_acceleration[3];  // rad/s^2, world frame: inverse inertia x applied torque
 };
-
-inline constexpr float kMaxRotationPerSubstep = 0.25f * 3.14159265f;  // rad
 
 // Scales (x, y, z) down to length `limit` where it is longer; lanes within it are untouched,
 // bit for bit.
@@ -35,29 +34,32 @@ SOFTSTEP_INLINE void clamp_norm(L& x, L& y, L& z, L limit) {
 // loads and a transpose. Callers pass whole blocks; slots of static bodies, free slots and
 // sleeping bodies hold zero velocity, no force and an identity rotation, which integrate to
 // themselves exactly.
-// kGravity, kDamping: compiled out when no body of the step has any (a gravity of 0 and a
-// damping factor of 1 give the same velocities: v + h 0 = v, v 1 = v).
-template <class L, bool kGravity = true, bool kDamping = true>
+// kGravity, kDamping, kTorque: compiled out when no body of the step has any (a gravity of 0,
+// a damping factor of 1 and no torque give the same velocities: v + h 0 = v, v 1 = v). Applied
+// forces ride on the gravity term (force / mass), applied torques on kTorque.
+template <class L, bool kGravity = true, bool kDamping = true, bool kTorque = false>
 SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceRecord* force,
                                           std::int32_t first, const SubstepContext& ctx) {
   const float h = ctx.h;
   std::int32_t index[kWidth<L>];
   for (int i = 0; i < kWidth<L>; ++i) index[i] = first + i;
   Rows8<L> v = gather_rows<L>(velocity, index);
-  if constexpr (kGravity || kDamping) {
+  if constexpr (kGravity || kDamping || kTorque) {
     const Rows8<L> f = gather_rows<L>(force, index);
     for (int k = 0; k < 3; ++k) {
       if constexpr (kGravity) v.r[k] = fmadd(L(h), f.r[k], v.r[k]);
+      if constexpr (kTorque) v.r[k + 3] = fmadd(L(h), f.r[k + 5], v.r[k + 3]);
       if constexpr (kDamping) {
         v.r[k] = v.r[k] * f.r[3];
         v.r[k + 3] = v.r[k + 3] * f.r[4];
       }
     }
   }
-  // A body may turn at most a quarter turn per sub-step. Beyond it the first-order rotation
-  // update is meaningless and a joint anchored off the centre swings its anchor anywhere: links
-  // with tiny inertia and chains at 1/15 s steps exploded (energy x 1e7) before this bound.
-  clamp_norm(v.r[3], v.r[4], v.r[5], L(kMaxRotationPerSubstep / h));
+  // A body may turn at most max_rotation_per_substep per sub-step (default an eighth of a
+  // turn). Beyond it the first-order rotation update is meaningless and a joint anchored off
+  // the centre swings its anchor anywhere: links with tiny inertia and chains at 1/15 s steps
+  // exploded (energy x 1e7) before this bound.
+  clamp_norm(v.r[3], v.r[4], v.r[5], L(ctx.max_angular_speed));
   // The speed bound keeps the kernels' float products in range (validation.cpp).
   clamp_norm(v.r[0], v.r[1], v.r[2], L(ctx.max_linear_speed));
   scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));

@@ -26,6 +26,9 @@ struct SubstepContext {
   // Bodies' speed bound, m/s (WorldSettings.max_linear_speed), applied as velocities are
   // integrated.
   float max_linear_speed;
+  // The spin limit as an angular speed for this sub-step, rad/s:
+  // WorldSettings.max_rotation_per_substep / h.
+  float max_angular_speed;
 };
 
 // Spring frequency that marks a rigid row in kernel lanes (API: Spring::rigid()).

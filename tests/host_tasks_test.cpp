@@ -1,0 +1,111 @@
+// Threads on the host's terms (issue 17, hook 11): a step's workers run through the host's
+// enqueue / finish callbacks with the same result as OpenMP and as one thread, and a forced
+// thread count (WorldSettings::fixed_threads) is what every step uses. Named Threads.* so the
+// ThreadSanitizer job runs them.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+#include "scenes/chain_scene.hpp"
+
+namespace softstep {
+namespace {
+
+// The simplest host job system: a thread per task, joined by finish.
+struct ThreadPerTask {
+  std::atomic<int> enqueued{0};
+  static void* enqueue(TaskCallbacks::Task task, int worker, void* task_context, void* self) {
+    static_cast<ThreadPerTask*>(self)->enqueued.fetch_add(1, std::memory_order_relaxed);
+    return new std::thread(task, worker, task_context);
+  }
+  static void finish(void* handle, void*) {
+    auto* thread = static_cast<std::thread*>(handle);
+    thread->join();
+    delete thread;
+  }
+  TaskCallbacks callbacks() { return {&enqueue, &finish, this}; }
+};
+
+struct ChainRun {
+  std::uint64_t hash;
+  int steps_on_two_threads;
+};
+
+// A soft chain of distance joints with limit rows and a hub whose joints overflow the colours:
+// every stage's threaded path.
+ChainRun run_chain(int threads, bool fixed, ThreadPerTask* host) {
+  WorldSettings s;
+  s.threads = threads;
+  s.fixed_threads = fixed;
+  World world(s);
+  if (host != nullptr) world.set_task_callbacks(host->callbacks());
+  world.set_profiling(true);
+  scenes::ChainOptions o;
+  o.links = 600;
+  o.joint = scenes::ChainJoint::Distance;
+  o.spring = Spring::soft(15.0, 0.3);
+  const scenes::ChainScene chain = scenes::build_chain(world, o);
+  BodyDef hub_def;
+  hub_def.position = {0.0, 2.0, 0.0};
+  hub_def.mass = 100.0;
+  const BodyId hub = world.create_body(hub_def);
+  for (std::size_t i = 0; i < 30; ++i) {  // more than the colours: an overflow set
+    DistanceJointDef d;
+    d.body_a = hub;
+    d.body_b = chain.links[0][i * 20];
+    d.spring = Spring::free();
+    d.min_length = 0.5;
+    d.max_length = 4.0 + 0.1 * static_cast<double>(i);
+    world.create_distance_joint(d);
+  }
+  ChainRun r{0, 0};
+  for (int i = 0; i < 40; ++i) {
+    world.step(1.0 / 60.0);
+    r.steps_on_two_threads += world.last_step_profile().threads == 2 ? 1 : 0;
+  }
+  r.hash = world.state_hash();
+  return r;
+}
+
+TEST(Threads, HostTaskCallbacksGiveTheSameWorldAsOpenMPAndOneThread) {
+  const ChainRun one = run_chain(1, true, nullptr);
+  const ChainRun openmp = run_chain(2, true, nullptr);
+  ThreadPerTask host;
+  const ChainRun hosted = run_chain(2, true, &host);
+  EXPECT_EQ(openmp.hash, one.hash);
+  EXPECT_EQ(hosted.hash, one.hash);
+  // The scene is far below the adaptive policy's 4,096 bodies and joints: only the forced
+  // count puts it on two threads, every step, each step enqueuing one worker.
+  EXPECT_EQ(one.steps_on_two_threads, 0);
+  EXPECT_EQ(openmp.steps_on_two_threads, 40);
+  EXPECT_EQ(hosted.steps_on_two_threads, 40);
+  EXPECT_EQ(host.enqueued.load(), 40);
+}
+
+TEST(Threads, AdaptivePolicyDecidesUnlessTheCountIsFixed) {
+  ThreadPerTask host;
+  const ChainRun adaptive = run_chain(2, false, &host);
+  EXPECT_EQ(adaptive.steps_on_two_threads, 0);  // too small to share
+  EXPECT_EQ(host.enqueued.load(), 0);
+  EXPECT_EQ(run_chain(2, true, &host).steps_on_two_threads, 40);
+}
+
+TEST(Threads, TaskCallbacksComeInPairs) {
+  World world;
+  const std::uint64_t before = world.state_hash();
+  TaskCallbacks half;
+  half.enqueue = &ThreadPerTask::enqueue;
+  try {
+    world.set_task_callbacks(half);
+    ADD_FAILURE() << "accepted enqueue without finish";
+  } catch (const InvalidArgument& e) {
+    EXPECT_EQ(e.field(), "TaskCallbacks.finish");
+  }
+  EXPECT_EQ(world.state_hash(), before);
+  world.set_task_callbacks({});  // back to OpenMP
+  world.step(1.0 / 60.0);
+}
+
+}  // namespace
+}  // namespace softstep
