@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 
+#include "rejection_check.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
@@ -48,17 +49,7 @@ Fixture make_world() {
 // `value`, and the world's full state unchanged.
 void expect_rejected(const std::function<void(Fixture&)>& call, const std::string& field,
                      const std::string& value) {
-  Fixture f = make_world();
-  const std::uint64_t before = f.world.state_hash();
-  try {
-    call(f);
-    ADD_FAILURE() << "accepted; expected rejection of " << field;
-  } catch (const InvalidArgument& e) {
-    EXPECT_EQ(e.field(), field) << e.what();
-    EXPECT_NE(std::string(e.what()).find(value), std::string::npos)
-        << "message '" << e.what() << "' should show the value " << value;
-  }
-  EXPECT_EQ(f.world.state_hash(), before) << "world changed by a rejected call on " << field;
+  test::expect_rejected_on<Fixture>(make_world, call, field, value);
 }
 
 BodyDef dynamic_body() {

@@ -10,18 +10,19 @@
 
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
+#include "tool/joint_scenes.hpp"
 #include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
 const std::string kProfileUsage =
     std::string(
-        "usage: softstep profile [chain|grid|bridge] [scene options] [--steps S]\n"
-        "                        [--substeps N] [--iterations N] [--relax N] [--threads T]\n"
+        "usage: softstep profile [chain|grid|bridge|hinge-chain|prismatic-stack] [scene options]\n"
+        "                        [--steps S] [--substeps N] [--iterations N] [--relax N] [--threads T]\n"
         "                        [--threads-fixed] [--simd scalar|sse|avx2]\n"
         "                        [--no-warm-start] [--no-sleep] [--general] [--plan]\n"
         "                        [--json FILE] [--csv FILE] [--trace FILE]\n") +
-    kSceneUsage +
+    kSceneUsage + "\n" + kJointSceneUsage +
     "\n  Stepped S times at 60 Hz (default 300).\n"
     "  --plan        print the step plan of the last step: effects, stages, kernel variants;\n"
     "  --threads T   at most T threads (0: all cores); each step runs on one or T, whichever ran\n"

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "softstep/metrics.hpp"
+#include "tool/joint_scenes.hpp"
 #include "tool/report_files.hpp"
 
 namespace softstep::tool {
@@ -26,15 +27,19 @@ SceneChoice take_scene_options(Arguments& args) {
   SceneChoice c;
   const std::vector<std::string> positionals = args.take_positionals();
   c.scene = positionals.empty() ? "chain" : positionals.front();
-  if (positionals.size() > 1 || (c.scene != "chain" && c.scene != "grid" && c.scene != "bridge")) {
-    throw UsageError("unknown scene '" + positionals.back() + "' (scenes: chain, grid, bridge)");
+  if (positionals.size() > 1 || (c.scene != "chain" && c.scene != "grid" && c.scene != "bridge" &&
+                                  !is_joint_scene(c.scene))) {
+    throw UsageError("unknown scene '" + positionals.back() +
+                     "' (scenes: chain, grid, bridge, hinge-chain, prismatic-stack)");
   }
   const auto only_for = [&](const char* flag, const char* owner) {
     if (c.scene != owner && args.has(flag))
       throw UsageError(std::string(flag) + " is a " + owner + " option");
   };
-  for (const char* flag : {"--links", "--chains", "--joint", "--end-mass", "--layout"})
-    only_for(flag, "chain");
+  for (const char* flag : {"--joint", "--end-mass", "--layout"}) only_for(flag, "chain");
+  if (c.scene != "hinge-chain") {
+    for (const char* flag : {"--links", "--chains"}) only_for(flag, "chain");
+  }
   only_for("--size", "grid");
   for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
 
@@ -65,6 +70,7 @@ SceneChoice take_scene_options(Arguments& args) {
       soft ? Spring::soft(hertz, zeta) : Spring::rigid();
   c.spring_text = soft ? "spring " + format_number(hertz) + " Hz, zeta " + format_number(zeta)
                        : std::string("rigid");
+  take_joint_scene_options(args, c);
   return c;
 }
 
@@ -76,6 +82,7 @@ std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<Bod
 }
 
 SceneRun build_scene(World& world, const SceneChoice& c) {
+  if (is_joint_scene(c.scene)) return build_joint_scene(world, c);
   SceneRun run;
   if (c.scene == "chain") {
     const scenes::ChainOptions& chain = c.chain;

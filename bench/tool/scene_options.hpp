@@ -9,6 +9,8 @@
 #include "scenes/bridge_scene.hpp"
 #include "scenes/chain_scene.hpp"
 #include "scenes/grid_scene.hpp"
+#include "scenes/hinge_chain.hpp"
+#include "scenes/prismatic_stack.hpp"
 #include "tool/arguments.hpp"
 
 namespace softstep::tool {
@@ -17,10 +19,12 @@ namespace softstep::tool {
 extern const char* const kSceneUsage;
 
 struct SceneChoice {
-  std::string scene = "chain";  // chain, grid or bridge
+  std::string scene = "chain";  // chain, grid, bridge, hinge-chain or prismatic-stack
   scenes::ChainOptions chain;
   scenes::GridOptions grid;
   scenes::BridgeOptions bridge;
+  scenes::HingeChainOptions hinge;     // tool/joint_scenes.cpp
+  scenes::PrismaticStackOptions stack;
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
 };
 

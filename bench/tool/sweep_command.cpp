@@ -17,18 +17,19 @@
 #include "tool/pareto_chart.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
+#include "tool/joint_scenes.hpp"
 #include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
 const std::string kSweepUsage =
     std::string(
-        "usage: softstep sweep [chain|grid|bridge] [scene options] --out DIR [--steps S]\n"
+        "usage: softstep sweep [chain|grid|bridge|hinge-chain|prismatic-stack] [scene options] --out DIR [--steps S]\n"
         "         [--substeps LIST] [--relax LIST] [--iterations LIST] [--warm-start on,off]\n"
         "         [--simd LIST] [--threads LIST] [--rigid-hertz LIST] [--runs R]\n"
         "         [--error drift|joint|reference]\n"
         "         [--reference-substeps N] [--reference-iterations N] [--probes K]\n") +
-    kSceneUsage +
+    kSceneUsage + "\n" + kJointSceneUsage +
     "\n  Every combination of the lists (comma-separated; defaults: substeps 1,2,4,8,16, relax\n"
     "  0,1,2,4, iterations 1, warm start on, simd best, threads 1, rigid hertz 60) runs S\n"
     "  steps of 1/60 s (default 60) once to measure its errors and R more times (default 3),\n"

@@ -50,6 +50,91 @@ Id pick(FuzzedDataProvider& in, const std::vector<Id>& ids) {
   return ids[in.ConsumeIntegralInRange<std::size_t>(0, ids.size() - 1)];
 }
 
+// A joint frame: unit or random axes, a reference perpendicular, random or (invalid)
+// parallel to the axis, and a zero or random anchor.
+softstep::JointFrame frame(FuzzedDataProvider& in) {
+  static const Eigen::Vector3d kAxes[] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(),
+                                          Eigen::Vector3d::UnitZ()};
+  softstep::JointFrame f;
+  f.local_anchor = in.ConsumeBool() ? Eigen::Vector3d::Zero() : vec(in);
+  const int axis = in.ConsumeIntegralInRange<int>(0, 3);
+  f.local_axis = axis < 3 ? kAxes[axis] : vec(in);
+  switch (in.ConsumeIntegralInRange<int>(0, 2)) {
+    case 0:
+      f.local_reference = kAxes[(axis + 1) % 3];
+      break;
+    case 1:
+      f.local_reference = vec(in);
+      break;
+    default:
+      f.local_reference = f.local_axis * value(in);  // parallel: rejected
+      break;
+  }
+  return f;
+}
+
+// Both frames: from frames_at (valid when the inputs are) or drawn one by one.
+void frames(FuzzedDataProvider& in, softstep::World& w, BodyId a, BodyId b,
+            softstep::JointFrame& fa, softstep::JointFrame& fb) {
+  if (in.ConsumeBool()) {
+    const softstep::JointFrames f = softstep::frames_at(w, a, b, vec(in), vec(in));
+    fa = f.a;
+    fb = f.b;
+  } else {
+    fa = frame(in);
+    fb = frame(in);
+  }
+}
+
+softstep::AxisLimit limit(FuzzedDataProvider& in) {
+  softstep::AxisLimit l;
+  l.enabled = in.ConsumeBool();
+  l.lower = value(in);
+  l.upper = in.ConsumeBool() ? std::abs(value(in)) : value(in);  // sometimes below lower
+  return l;
+}
+
+softstep::AxisSpring axis_spring(FuzzedDataProvider& in) {
+  return {spring(in), in.ConsumeBool() ? 0.0 : value(in)};  // rigid: rejected
+}
+
+template <class Motor>
+Motor motor(FuzzedDataProvider& in) {
+  Motor m;
+  m.enabled = in.ConsumeBool();
+  m.speed = value(in);
+  if constexpr (requires { m.max_torque; }) {
+    m.max_torque = value(in);  // negative: rejected
+  } else {
+    m.max_force = value(in);
+  }
+  return m;
+}
+
+// Changes one part of a revolute or prismatic definition (or a weld's springs or frames).
+template <class Def>
+void mutate(FuzzedDataProvider& in, Def& d) {
+  switch (in.ConsumeIntegralInRange<int>(0, 4)) {
+    case 0:
+      d.frame_a = frame(in);
+      break;
+    case 1:
+      d.frame_b = frame(in);
+      break;
+    case 2:
+      if constexpr (requires { d.limit; }) d.limit = limit(in);
+      if constexpr (requires { d.angular; }) d.angular = spring(in);
+      break;
+    case 3:
+      if constexpr (requires { d.motor; }) d.motor = motor<decltype(d.motor)>(in);
+      if constexpr (requires { d.linear; }) d.linear = spring(in);
+      break;
+    default:
+      if constexpr (requires { d.spring; }) d.spring = axis_spring(in);
+      break;
+  }
+}
+
 [[noreturn]] void fail(const char* what) {
   std::fprintf(stderr, "world_fuzzer: %s\n", what);
   __builtin_trap();
@@ -97,7 +182,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int op = 0; op < 48 && in.remaining_bytes() > 0; ++op) {
     const std::uint64_t before = world.state_hash();
     try {
-      switch (in.ConsumeIntegralInRange<int>(0, 9)) {
+      switch (in.ConsumeIntegralInRange<int>(0, 11)) {
         case 0:
         case 1: {
           if (bodies.size() >= 24) break;
@@ -214,6 +299,68 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                          s.solve_iterations, s.relax_iterations, int(s.warm_start), s.rigid_hertz,
                          s.max_linear_speed);
           }
+          break;
+        }
+        case 10: {  // a revolute, prismatic or weld joint with random controls
+          if (joints.size() >= 48) break;
+          const BodyId a = pick(in, bodies);
+          const BodyId b = pick(in, bodies);
+          const int type = in.ConsumeIntegralInRange<int>(0, 2);
+          if (type == 0) {
+            softstep::RevoluteJointDef j;
+            j.body_a = a;
+            j.body_b = b;
+            frames(in, world, a, b, j.frame_a, j.frame_b);
+            j.limit = limit(in);
+            j.motor = motor<softstep::AngularMotor>(in);
+            j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
+            joints.push_back(world.create_joint(j));
+          } else if (type == 1) {
+            softstep::PrismaticJointDef j;
+            j.body_a = a;
+            j.body_b = b;
+            frames(in, world, a, b, j.frame_a, j.frame_b);
+            j.limit = limit(in);
+            j.motor = motor<softstep::LinearMotor>(in);
+            j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
+            joints.push_back(world.create_joint(j));
+          } else {
+            softstep::WeldJointDef j;
+            j.body_a = a;
+            j.body_b = b;
+            frames(in, world, a, b, j.frame_a, j.frame_b);
+            j.linear = spring(in);
+            j.angular = spring(in);
+            joints.push_back(world.create_joint(j));
+          }
+          if (verbose()) std::fprintf(stderr, "angular joint type %d %u-%u\n", type, a.index, b.index);
+          break;
+        }
+        case 11: {  // set_joint on a joint of the new types: one part changed
+          const JointId id = pick(in, joints);
+          switch (world.joint_type(id)) {
+            case softstep::JointType::Revolute: {
+              auto d = world.joint_def<softstep::RevoluteJointDef>(id);
+              mutate(in, d);
+              world.set_joint(id, d);
+              break;
+            }
+            case softstep::JointType::Prismatic: {
+              auto d = world.joint_def<softstep::PrismaticJointDef>(id);
+              mutate(in, d);
+              world.set_joint(id, d);
+              break;
+            }
+            case softstep::JointType::Weld: {
+              auto d = world.joint_def<softstep::WeldJointDef>(id);
+              mutate(in, d);
+              world.set_joint(id, d);
+              break;
+            }
+            default:
+              break;
+          }
+          if (verbose()) std::fprintf(stderr, "set_joint %u\n", id.index);
           break;
         }
         default: {

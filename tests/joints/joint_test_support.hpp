@@ -1,0 +1,76 @@
+// Small helpers the joint tests share: a world with a static ground, a box body, and the
+// frequency of a signal from its zero crossings.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "softstep/softstep.hpp"
+
+namespace softstep::test {
+
+constexpr double kDt = 1.0 / 60.0;
+
+// Inertia of a solid box of full side lengths (x, y, z), kg m^2, body frame.
+inline Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d s2 = size.cwiseProduct(size);
+  return Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
+         (mass / 12.0);
+}
+
+// The same inertia turned by `rotation` in the body frame: products of inertia, so the
+// body's principal axes are not the joint's (a body hinged off its principal axes needs the
+// joint's off-axis torques to keep turning about the hinge).
+inline Eigen::Matrix3d turned(const Eigen::Matrix3d& inertia, const Eigen::Matrix3d& rotation) {
+  return rotation * inertia * rotation.transpose();
+}
+
+inline BodyId static_body(World& world, const Eigen::Vector3d& position = Eigen::Vector3d::Zero()) {
+  BodyDef d;
+  d.type = BodyType::Static;
+  d.position = position;
+  return world.create_body(d);
+}
+
+inline BodyId dynamic_body(World& world, const Eigen::Vector3d& position, double mass,
+                           const Eigen::Matrix3d& inertia,
+                           const Quaternion& orientation = Quaternion::Identity()) {
+  BodyDef d;
+  d.position = position;
+  d.orientation = orientation;
+  d.mass = mass;
+  d.inertia = inertia;
+  return world.create_body(d);
+}
+
+// Times (s) at which `sample` crosses zero going upwards, interpolated linearly inside the
+// step, while `advance` steps the world `steps` times by dt.
+inline std::vector<double> upward_crossings(const std::function<void()>& advance,
+                                            const std::function<double()>& sample, double dt,
+                                            int steps) {
+  std::vector<double> crossings;
+  double previous = sample();
+  for (int i = 1; i <= steps; ++i) {
+    advance();
+    const double now = sample();
+    if (previous < 0.0 && now >= 0.0) crossings.push_back((i - 1 + previous / (previous - now)) * dt);
+    previous = now;
+  }
+  return crossings;
+}
+
+// Mean period between the first and the last crossing; 0 when fewer than two.
+inline double mean_period(const std::vector<double>& crossings) {
+  if (crossings.size() < 2) return 0.0;
+  return (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+}
+
+// The rotation angle of q about `axis` (unit), rad in (-pi, pi]: the twist part of q.
+inline double twist_angle(const Quaternion& q, const Eigen::Vector3d& axis) {
+  const double along = q.vec().dot(axis);
+  return 2.0 * std::atan2(along, q.w());
+}
+
+}  // namespace softstep::test

@@ -1,0 +1,287 @@
+// Bad input to the revolute, prismatic and weld joints (create_joint, set_joint, joint_def,
+// frames_at) is rejected with an InvalidArgument naming the field and showing the value, and
+// the world is left exactly as it was (state_hash): the house style of validation_test.cpp.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <limits>
+#include <string>
+
+#include "joints/joint_test_support.hpp"
+#include "rejection_check.hpp"
+
+namespace softstep {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Fixture {
+  World world;
+  BodyId ground, a, b, gone;
+  JointId revolute, prismatic, weld;
+};
+
+// A world with one joint of each type, stepped so that impulses and poses are non-trivial.
+Fixture make_world() {
+  Fixture f{World(), {}, {}, {}, {}, {}, {}, {}};
+  f.ground = test::static_body(f.world);
+  f.a = test::dynamic_body(f.world, {1, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
+  f.b = test::dynamic_body(f.world, {2, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
+  f.gone = test::dynamic_body(f.world, {3, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
+  f.world.destroy_body(f.gone);
+  const JointFrames fa = frames_at(f.world, f.ground, f.a, {0.5, 0, 0}, Eigen::Vector3d::UnitZ());
+  RevoluteJointDef r;
+  r.body_a = f.ground;
+  r.body_b = f.a;
+  r.frame_a = fa.a;
+  r.frame_b = fa.b;
+  r.limit = {true, -1.0, 1.0};
+  r.motor = {true, 0.5, 1.0};
+  f.revolute = f.world.create_joint(r);
+  const JointFrames fb = frames_at(f.world, f.a, f.b, {1.5, 0, 0}, Eigen::Vector3d::UnitX());
+  PrismaticJointDef p;
+  p.body_a = f.a;
+  p.body_b = f.b;
+  p.frame_a = fb.a;
+  p.frame_b = fb.b;
+  p.spring = {Spring::soft(2.0, 0.5), 0.0};
+  f.prismatic = f.world.create_joint(p);
+  WeldJointDef w;
+  w.body_a = f.ground;
+  w.body_b = f.b;
+  w.frame_a = fb.a;  // any frames: a weld holds whatever they say
+  w.frame_b = fb.b;
+  w.angular = Spring::soft(3.0, 0.1);
+  f.weld = f.world.create_joint(w);
+  for (int i = 0; i < 3; ++i) f.world.step(1.0 / 60.0);
+  return f;
+}
+
+void expect_rejected(const std::function<void(Fixture&)>& call, const std::string& field,
+                     const std::string& value) {
+  test::expect_rejected_on<Fixture>(make_world, call, field, value);
+}
+
+// Every check is made twice: on create_joint with a new joint between a and b, and on
+// set_joint of the fixture's joint of that type. Both must reject with the same field.
+template <class Def>
+void expect_def_rejected(const std::function<void(Fixture&, Def&)>& mutate,
+                         JointId Fixture::*existing, const std::string& field,
+                         const std::string& value) {
+  expect_rejected(
+      [&](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.body_a = f.a;
+        d.body_b = f.b;
+        mutate(f, d);
+        f.world.create_joint(d);
+      },
+      field, value);
+  expect_rejected(
+      [&](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        mutate(f, d);
+        f.world.set_joint(f.*existing, d);
+      },
+      field, value);
+}
+
+// The checks every frame-based joint shares: bodies, anchors, axes, references.
+template <class Def>
+void expect_frame_rejections(const std::string& type, JointId Fixture::*existing) {
+  using Mutate = std::function<void(Fixture&, Def&)>;
+  const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<Def>(m, existing, type + "." + field, value);
+  };
+  check([](Fixture&, Def& d) { d.frame_a.local_axis.setZero(); }, "frame_a.local_axis", "0");
+  check([](Fixture&, Def& d) { d.frame_b.local_axis = {0.0, kNan, 1.0}; }, "frame_b.local_axis",
+        "nan");
+  check([](Fixture&, Def& d) { d.frame_a.local_axis = {kInf, 0.0, 0.0}; }, "frame_a.local_axis",
+        "inf");
+  check([](Fixture&, Def& d) { d.frame_b.local_reference = 2.0 * d.frame_b.local_axis; },
+        "frame_b.local_reference", "parallel");
+  check([](Fixture&, Def& d) { d.frame_a.local_reference.setZero(); }, "frame_a.local_reference",
+        "0");
+  // Creating: the same body twice, an unknown or destroyed body. set_joint: bodies changed.
+  expect_rejected(
+      [existing](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.body_a = f.b;
+        d.body_b = f.b;
+        f.world.create_joint(d);
+      },
+      type + ".body_b", "same body");
+  expect_rejected(
+      [existing](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.body_a = f.gone;
+        f.world.create_joint(d);
+      },
+      type + ".body_a", "BodyId{3");
+  expect_rejected(
+      [existing](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.body_b = BodyId{99, 0};
+        f.world.create_joint(d);
+      },
+      type + ".body_b", "BodyId{99");
+}
+
+// KNOWN DEFECT (reported to the lead, kept strict, disabled until fixed): a frame's anchor
+// is named "RevoluteJointDef.local_anchor_a" (likewise _b, and for the prismatic and weld
+// joints), not as the caller spells it, "RevoluteJointDef.frame_a.local_anchor" (errors.hpp:
+// "the offending field as the caller spells it"; the axis and reference are named so).
+// set_joint with body_b changed names body_a (with body_a's unchanged value, BodyId{0}).
+// The rejections themselves work: the world is unchanged and the value shown.
+template <class Def>
+void expect_anchor_and_body_change_named(const std::string& type, JointId Fixture::*existing) {
+  using Mutate = std::function<void(Fixture&, Def&)>;
+  const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<Def>(m, existing, type + "." + field, value);
+  };
+  check([](Fixture&, Def& d) { d.frame_a.local_anchor.y() = kNan; }, "frame_a.local_anchor",
+        "nan");
+  check([](Fixture&, Def& d) { d.frame_b.local_anchor.z() = 2e9; }, "frame_b.local_anchor",
+        "2e+09");
+  expect_rejected(
+      [existing](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.body_b = d.body_b == f.a ? f.b : f.a;
+        f.world.set_joint(f.*existing, d);
+      },
+      type + ".body_b", "BodyId{");
+}
+
+TEST(JointValidation, DISABLED_AnchorsAndChangedBodiesNamedAsTheCallerSpellsThem) {
+  expect_anchor_and_body_change_named<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute);
+  expect_anchor_and_body_change_named<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic);
+  expect_anchor_and_body_change_named<WeldJointDef>("WeldJointDef", &Fixture::weld);
+}
+
+// Until then: the anchors' rejections and the bodies' change are refused, world unchanged
+// (the field checked only for naming the anchor or a body at all).
+template <class Def>
+void expect_anchor_and_body_change_refused(JointId Fixture::*existing) {
+  const auto refused = [](const std::function<void(Fixture&)>& call, const std::string& part) {
+    Fixture f = make_world();
+    const std::uint64_t before = f.world.state_hash();
+    try {
+      call(f);
+      ADD_FAILURE() << "accepted";
+    } catch (const InvalidArgument& e) {
+      EXPECT_NE(e.field().find(part), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(f.world.state_hash(), before);
+  };
+  refused(
+      [existing](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.frame_a.local_anchor.y() = kNan;
+        f.world.set_joint(f.*existing, d);
+      },
+      "anchor");
+  refused(
+      [existing](Fixture& f) {
+        Def d = f.world.joint_def<Def>(f.*existing);
+        d.body_b = d.body_b == f.a ? f.b : f.a;
+        f.world.set_joint(f.*existing, d);
+      },
+      "body");
+}
+
+TEST(JointValidation, AnchorsAndChangedBodiesAreRefused) {
+  expect_anchor_and_body_change_refused<RevoluteJointDef>(&Fixture::revolute);
+  expect_anchor_and_body_change_refused<PrismaticJointDef>(&Fixture::prismatic);
+  expect_anchor_and_body_change_refused<WeldJointDef>(&Fixture::weld);
+}
+
+TEST(JointValidation, RevoluteFrames) {
+  expect_frame_rejections<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute);
+}
+TEST(JointValidation, PrismaticFrames) {
+  expect_frame_rejections<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic);
+}
+TEST(JointValidation, WeldFrames) {
+  expect_frame_rejections<WeldJointDef>("WeldJointDef", &Fixture::weld);
+}
+
+// Limits, motors and springs along the free axis (revolute and prismatic alike).
+template <class Def>
+void expect_axis_rejections(const std::string& type, JointId Fixture::*existing,
+                            const std::string& max_field) {
+  using Mutate = std::function<void(Fixture&, Def&)>;
+  const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<Def>(m, existing, type + "." + field, value);
+  };
+  // Named like DistanceJointDef's min/max: the field checked against the other, showing both.
+  check([](Fixture&, Def& d) { d.limit = {true, 0.5, -0.25}; }, "limit.lower", "upper (-0.25)");
+  check([](Fixture&, Def& d) { d.limit = {true, kNan, 1.0}; }, "limit.lower", "nan");
+  check([](Fixture&, Def& d) { d.limit = {true, -1.0, kInf}; }, "limit.upper", "inf");
+  check([](Fixture&, Def& d) { d.motor.speed = kNan; }, "motor.speed", "nan");
+  check(
+      [&](Fixture&, Def& d) {
+        if constexpr (requires { d.motor.max_torque; }) {
+          d.motor.max_torque = -2.0;
+        } else {
+          d.motor.max_force = -2.0;
+        }
+      },
+      "motor." + max_field, "-2");
+  check(
+      [&](Fixture&, Def& d) {
+        if constexpr (requires { d.motor.max_torque; }) {
+          d.motor.max_torque = kNan;
+        } else {
+          d.motor.max_force = kNan;
+        }
+      },
+      "motor." + max_field, "nan");
+  check([](Fixture&, Def& d) { d.spring = {Spring::rigid(), 0.0}; }, "spring.spring.hertz",
+        "inf");
+  check([](Fixture&, Def& d) { d.spring = {Spring::soft(-1.0, 0.5), 0.0}; },
+        "spring.spring.hertz", "-1");
+  check([](Fixture&, Def& d) { d.spring = {Spring::soft(2.0, kNan), 0.0}; },
+        "spring.spring.damping_ratio", "nan");
+  check([](Fixture&, Def& d) { d.spring = {Spring::soft(2.0, 0.5), kNan}; }, "spring.target",
+        "nan");
+}
+
+TEST(JointValidation, RevoluteAxisControls) {
+  expect_axis_rejections<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute, "max_torque");
+}
+TEST(JointValidation, PrismaticAxisControls) {
+  expect_axis_rejections<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic, "max_force");
+}
+
+TEST(JointValidation, WeldSprings) {
+  using Mutate = std::function<void(Fixture&, WeldJointDef&)>;
+  const auto check = [](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<WeldJointDef>(m, &Fixture::weld, "WeldJointDef." + field, value);
+  };
+  check([](Fixture&, WeldJointDef& d) { d.linear = Spring::soft(-3.0, 0.1); }, "linear.hertz", "-3");
+  check([](Fixture&, WeldJointDef& d) { d.angular = Spring::soft(kNan, 0.1); }, "angular.hertz",
+        "nan");
+  check([](Fixture&, WeldJointDef& d) { d.angular = Spring::soft(2.0, -0.5); },
+        "angular.damping_ratio", "-0.5");
+}
+
+// The typed accessors refuse a joint of another type; frames_at refuses what it cannot use.
+TEST(JointValidation, WrongTypeAndFramesAt) {
+  Fixture f = make_world();
+  const std::uint64_t before = f.world.state_hash();
+  EXPECT_THROW(f.world.joint_def<WeldJointDef>(f.revolute), InvalidArgument);
+  EXPECT_THROW(f.world.joint_def<RevoluteJointDef>(f.prismatic), InvalidArgument);
+  EXPECT_THROW(f.world.joint_def<PrismaticJointDef>(JointId{77, 0}), InvalidArgument);
+  EXPECT_THROW(f.world.set_joint(f.weld, f.world.joint_def<RevoluteJointDef>(f.revolute)),
+               InvalidArgument);
+  EXPECT_THROW(frames_at(f.world, f.a, f.b, {0, 0, 0}, Eigen::Vector3d::Zero()), InvalidArgument);
+  EXPECT_THROW(frames_at(f.world, f.a, f.b, {kNan, 0, 0}, Eigen::Vector3d::UnitZ()),
+               InvalidArgument);
+  EXPECT_THROW(frames_at(f.world, f.a, f.gone, {0, 0, 0}, Eigen::Vector3d::UnitZ()),
+               InvalidArgument);
+  EXPECT_EQ(f.world.state_hash(), before);
+}
+
+}  // namespace
+}  // namespace softstep
