@@ -2,13 +2,13 @@
 // with limits, motors, springs, rigid and soft welds, under gravity) lands on the same state,
 // bit for bit, at every SIMD width, on 1 and 2 threads, and specialized or general
 // (DESIGN.md: "make that a test, not a hope").
+#include "scenes/joint_zoo.hpp"
+
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <set>
 #include <thread>
-
-#include "scenes/joint_zoo.hpp"
 
 namespace softstep {
 namespace {
@@ -65,8 +65,8 @@ TEST(JointZoo, BitIdenticalAcrossWidthsThreadsAndSpecialization) {
         const std::optional<ZooRun> r = run_zoo(w, threads, specialize);
         if (!r) continue;  // this CPU lacks the width
         ++compared;
-        EXPECT_EQ(r->hash, reference->hash) << simd_width_name(w) << ", " << threads
-                                            << " thread(s), specialize " << specialize;
+        EXPECT_EQ(r->hash, reference->hash)
+            << simd_width_name(w) << ", " << threads << " thread(s), specialize " << specialize;
         // The adaptive policy runs the first step and every probe on all threads.
         if (threads > 1 && std::thread::hardware_concurrency() > 1) {
           EXPECT_GE(r->shared_steps, 2) << "the zoo never ran on two threads";

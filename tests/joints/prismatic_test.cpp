@@ -40,11 +40,12 @@ Slider make_slider(const Eigen::Vector3d& axis, const Eigen::Vector3d& anchor_of
   settings.sleeping = false;  // the limit readings are read while the body rests on a limit
   Slider s{World(settings), {}, {}, {}, {}, axis.normalized()};
   s.ground = test::static_body(s.world);
-  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   s.body = test::dynamic_body(s.world, {0.0, 1.0, 0.0}, 2.0,
                               test::turned(test::box_inertia(2.0, {0.4, 0.2, 0.3}), turn));
-  s.def = scenes::joint_at<PrismaticJointDef>(s.world, s.ground, s.body,
-                                              Eigen::Vector3d(0.0, 1.0, 0.0) + anchor_offset, s.axis);
+  s.def = scenes::joint_at<PrismaticJointDef>(
+      s.world, s.ground, s.body, Eigen::Vector3d(0.0, 1.0, 0.0) + anchor_offset, s.axis);
   s.def.limit = limit;
   s.def.motor = motor;
   s.joint = s.world.create_joint(s.def);
@@ -132,7 +133,8 @@ TEST(Prismatic, TranslationStaysWithinItsLimits) {
 // accelerates at g (at most) to 1 m/s and holds it; no sub-step's impulse exceeds F h.
 TEST(Prismatic, MotorReachesItsSpeedAndNeverExceedsItsForce) {
   const double force = 2.0 * 2.0 * kG, speed = 1.0;
-  Slider s = make_slider(Eigen::Vector3d::UnitY(), Eigen::Vector3d::Zero(), {}, {true, speed, force});
+  Slider s =
+      make_slider(Eigen::Vector3d::UnitY(), Eigen::Vector3d::Zero(), {}, {true, speed, force});
   const double h = kDt / s.world.settings().substeps;
   double worst = 0.0;
   for (int i = 1; i <= 30; ++i) {
@@ -184,7 +186,8 @@ TEST(Prismatic, SetJointMovesTheSpringTargetAndWakes) {
   World world(settings);
   const BodyId ground = test::static_body(world);
   const BodyId body = test::dynamic_body(world, {0, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
-  auto j = scenes::joint_at<PrismaticJointDef>(world, ground, body, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX());
+  auto j = scenes::joint_at<PrismaticJointDef>(world, ground, body, Eigen::Vector3d::Zero(),
+                                               Eigen::Vector3d::UnitX());
   j.spring = {Spring::soft(3.0, 1.0), 0.0};
   const JointId id = world.create_joint(j);
   for (int i = 0; i < 60; ++i) world.step(kDt);

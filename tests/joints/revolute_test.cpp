@@ -33,17 +33,17 @@ double rigid_row_bound(double alpha, double h) {
 
 // A bar 0.3 x 1.0 x 0.2 m of 2 kg, its inertia turned off the hinge's axes.
 Eigen::Matrix3d rod_inertia_off_axis() {
-  const Eigen::Matrix3d turn =
-      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) *
+                                Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()))
+                                   .toRotationMatrix();
   return test::turned(test::box_inertia(2.0, {0.3, 1.0, 0.2}), turn);
 }
 
 struct SwingResult {
-  double period = 0.0;       // s
-  double off_axis = 0.0;     // rad/s: max |omega x|, |omega y|
+  double period = 0.0;        // s
+  double off_axis = 0.0;      // rad/s: max |omega x|, |omega y|
   double out_of_plane = 0.0;  // m: max |z| of the centre
-  double gap = 0.0;          // m: max anchor gap (joint reading)
+  double gap = 0.0;           // m: max anchor gap (joint reading)
 };
 
 // A 2 kg rod hanging d = 0.5 m below a hinge about z (or a ball joint), started from the
@@ -64,7 +64,8 @@ SwingResult swing(bool hinge, double* expected_period = nullptr) {
   const double w0 = 3.0 * kPi / 180.0 * omega;  // theta(t) = theta0 sin(omega t), theta0 = 3 deg
   world.set_angular_velocity(bob, {0.0, 0.0, w0});
   world.set_linear_velocity(bob, {w0 * d, 0.0, 0.0});  // omega x (centre - pivot)
-  const JointFrames frames = frames_at(world, ground, bob, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+  const JointFrames frames =
+      frames_at(world, ground, bob, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
   JointId joint;
   if (hinge) {
     RevoluteJointDef j;
@@ -86,8 +87,8 @@ SwingResult swing(bool hinge, double* expected_period = nullptr) {
       [&] {
         world.step(kDt);
         const BodyState b = world.body(bob);
-        r.off_axis = std::max({r.off_axis, std::abs(b.angular_velocity.x()),
-                               std::abs(b.angular_velocity.y())});
+        r.off_axis = std::max(
+            {r.off_axis, std::abs(b.angular_velocity.x()), std::abs(b.angular_velocity.y())});
         r.out_of_plane = std::max(r.out_of_plane, std::abs(b.position.z()));
         r.gap = std::max(r.gap, world.joint_reading(joint).error);
       },
@@ -183,7 +184,8 @@ TEST_P(RevoluteLimits, MotorPressedAgainstLimitsNeverPassesThem) {
   // Unwrapped: the angle moves by at most speed dt (+ the settling) per step, never by a turn.
   EXPECT_LT(up.largest_jump, speed * kDt * 1.1);
   // The body really turned that far: its orientation is the angle, modulo a turn.
-  const double twist = test::twist_angle(w.world.body(w.wheel).orientation, Eigen::Vector3d::UnitZ());
+  const double twist =
+      test::twist_angle(w.world.body(w.wheel).orientation, Eigen::Vector3d::UnitZ());
   EXPECT_NEAR(std::remainder(twist - up.max, 2.0 * kPi), 0.0, 1e-3);
 
   RevoluteJointDef back = w.def;
@@ -198,7 +200,8 @@ TEST_P(RevoluteLimits, MotorPressedAgainstLimitsNeverPassesThem) {
 INSTANTIATE_TEST_SUITE_P(
     Angles, RevoluteLimits,
     ::testing::Values(LimitCase{-0.5, 0.7, "small"},
-                      LimitCase{-170.0 * kPi / 180.0, 170.0 * kPi / 180.0, "plus_minus_170_degrees"},
+                      LimitCase{-170.0 * kPi / 180.0, 170.0 * kPi / 180.0,
+                                "plus_minus_170_degrees"},
                       LimitCase{-170.0 * kPi / 180.0, 3.0 * 2.0 * kPi, "three_turns"}),
     [](const ::testing::TestParamInfo<LimitCase>& p) { return std::string(p.param.name); });
 
@@ -220,7 +223,8 @@ TEST(Revolute, ArmFallingOntoItsLimitStopsAtIt) {
   const Eigen::Matrix3d inertia = test::box_inertia(m, {1.0, 0.1, 0.1});
   const BodyId ground = test::static_body(world);
   const BodyId arm = test::dynamic_body(world, {d, 0.0, 0.0}, m, inertia);
-  auto j = scenes::joint_at<RevoluteJointDef>(world, ground, arm, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+  auto j = scenes::joint_at<RevoluteJointDef>(world, ground, arm, Eigen::Vector3d::Zero(),
+                                              Eigen::Vector3d::UnitZ());
   j.limit = {true, -0.5, 0.5};
   const JointId joint = world.create_joint(j);
   const double alpha = m * kG * d * std::cos(0.5) / inertia(2, 2);
@@ -235,8 +239,7 @@ TEST(Revolute, ArmFallingOntoItsLimitStopsAtIt) {
   EXPECT_LT(lowest, -0.5 + 1e-3) << "never reached the limit";
   EXPECT_GT(lowest, -0.5 - rigid_row_bound(alpha, kDt / 4) - c * c * omega0 / kOmegaRigid);
   // At rest only the sag is left (measured: 3.59e-4 rad, the model's alpha / omega_r^2).
-  EXPECT_GT(world.joint_reading(joint).position,
-            -0.5 - 2.0 * alpha / (kOmegaRigid * kOmegaRigid));
+  EXPECT_GT(world.joint_reading(joint).position, -0.5 - 2.0 * alpha / (kOmegaRigid * kOmegaRigid));
   // Resting on it, the limit holds the weight's torque: lower pushes towards larger angles.
   const JointReading r = world.joint_reading(joint);
   EXPECT_GT(r.limit_impulse, 0.0);

@@ -25,7 +25,8 @@ TEST(Weld, RigidWeldHoldsACantileverLikeARigidBeam) {
   const Eigen::Matrix3d inertia = test::box_inertia(m, {length, 0.1, 0.1});
   const BodyId wall = test::static_body(world);
   const BodyId beam = test::dynamic_body(world, {length / 2, 0.0, 0.0}, m, inertia);
-  auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+  auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(),
+                                          Eigen::Vector3d::UnitZ());
   const JointId joint = world.create_joint(j);
   const Eigen::Vector3d tip_local(length / 2, 0.0, 0.0);
   double worst = 0.0;
@@ -79,7 +80,8 @@ TEST_P(SoftWeld, AngularHalfOscillatesAtItsFrequencyAboutEveryAxis) {
   const BodyId ground = test::static_body(world);
   const BodyId body = test::dynamic_body(world, {0.0, 1.0, 0.0}, 3.0,
                                          Eigen::Vector3d(0.02, 0.05, 0.1).asDiagonal());
-  auto j = scenes::joint_at<WeldJointDef>(world, ground, body, {0.0, 1.0, 0.0}, Eigen::Vector3d(1.0, 1.0, 1.0));
+  auto j = scenes::joint_at<WeldJointDef>(world, ground, body, {0.0, 1.0, 0.0},
+                                          Eigen::Vector3d(1.0, 1.0, 1.0));
   j.angular = Spring::soft(c.hertz, 0.0);
   world.create_joint(j);
   const Eigen::Vector3d axis = Eigen::Vector3d::Unit(c.axis);
@@ -134,8 +136,10 @@ TEST(Weld, JointDefRoundTrips) {
 TEST(Weld, SetJointSoftensTheWeldAndWakes) {
   World world;
   const BodyId wall = test::static_body(world);
-  const BodyId beam = test::dynamic_body(world, {0.5, 0.0, 0.0}, 2.0, test::box_inertia(2.0, {1.0, 0.1, 0.1}));
-  auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ());
+  const BodyId beam =
+      test::dynamic_body(world, {0.5, 0.0, 0.0}, 2.0, test::box_inertia(2.0, {1.0, 0.1, 0.1}));
+  auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(),
+                                          Eigen::Vector3d::UnitZ());
   const JointId id = world.create_joint(j);
   for (int i = 0; i < 60; ++i) world.step(kDt);
   ASSERT_FALSE(world.is_awake(beam));

@@ -57,8 +57,10 @@ void World::set_joint(JointId id, const Def& def) {
   const JointSlot& old = joint_of_type(*impl_, "set_joint", id, K::type);
   JointSlot next = K::make_slot(*impl_, "set_joint", def);
   if (next.body_a != old.body_a || next.body_b != old.body_b) {
-    validation::reject("set_joint", std::string(K::def_name) + ".body_a",
-                       "BodyId{" + std::to_string(def.body_a.index) + "}",
+    const bool a_changed = next.body_a != old.body_a;
+    const BodyId given = a_changed ? def.body_a : def.body_b;
+    validation::reject("set_joint", std::string(K::def_name) + (a_changed ? ".body_a" : ".body_b"),
+                       "BodyId{" + std::to_string(given.index) + "}",
                        "a joint keeps its bodies (destroy it and create another)");
   }
   replace_joint(*impl_, id.index, std::move(next));

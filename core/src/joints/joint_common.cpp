@@ -5,7 +5,8 @@ namespace softstep {
 
 JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
                              BodyId a, BodyId b, const Eigen::Vector3d& local_anchor_a,
-                             const Eigen::Vector3d& local_anchor_b) {
+                             const Eigen::Vector3d& local_anchor_b, std::string_view anchor_a,
+                             std::string_view anchor_b) {
   const std::string prefix(def);
   JointSlot j;
   j.body_a = body_slot(w, call, prefix + ".body_a", a);
@@ -19,12 +20,12 @@ JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::s
   const BodyType type_a = w.bodies[j.body_a].type, type_b = w.bodies[j.body_b].type;
   if (type_a != BodyType::Dynamic && type_b != BodyType::Dynamic) {
     const auto name = [](BodyType t) { return t == BodyType::Static ? "static" : "kinematic"; };
-    validation::reject(call, prefix + ".body_b",
-                       "BodyId{" + std::to_string(b.index) + "} (" + name(type_b) + ")",
-                       std::string("a joint needs a dynamic body (body_a is ") + name(type_a) + ")");
+    validation::reject(
+        call, prefix + ".body_b", "BodyId{" + std::to_string(b.index) + "} (" + name(type_b) + ")",
+        std::string("a joint needs a dynamic body (body_a is ") + name(type_a) + ")");
   }
-  validation::finite(call, prefix + ".local_anchor_a", local_anchor_a);
-  validation::finite(call, prefix + ".local_anchor_b", local_anchor_b);
+  validation::finite(call, prefix + "." + std::string(anchor_a), local_anchor_a);
+  validation::finite(call, prefix + "." + std::string(anchor_b), local_anchor_b);
   j.local_anchor_a = local_anchor_a;
   j.local_anchor_b = local_anchor_b;
   return j;

@@ -12,9 +12,12 @@ namespace softstep {
 
 // A slot with the checked ends of a definition named `def` ("RevoluteJointDef"): live and
 // distinct bodies, finite anchors, not both unable to move. Throws InvalidArgument.
+// The anchors are named `<def>.<anchor_a>` and `<def>.<anchor_b>`, as the Def spells them.
 JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
                              BodyId a, BodyId b, const Eigen::Vector3d& local_anchor_a,
-                             const Eigen::Vector3d& local_anchor_b);
+                             const Eigen::Vector3d& local_anchor_b,
+                             std::string_view anchor_a = "local_anchor_a",
+                             std::string_view anchor_b = "local_anchor_b");
 
 template <int W>
 void fill_spring_lanes(simd::SoftRowLanes<W>& g, int lane, const Spring& spring) {
