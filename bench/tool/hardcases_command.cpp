@@ -1,5 +1,6 @@
 #include "tool/hardcases_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -9,12 +10,6 @@
 
 namespace softstep::tool {
 
-const char* const kHardcasesUsage =
-    "usage: softstep hardcases [--simd scalar|sse|avx2] [--quick]\n"
-    "  Runs every hard case (tests/hard_cases_test.cpp asserts the same bounds) and prints a\n"
-    "  Markdown table: figure measured and pass bound per case. --quick skips the 10,000-link\n"
-    "  chains. Exit code 1 if any case fails, other than the known failures it lists.";
-
 namespace {
 std::string cell(double value, double bound) {
   char b[64];
@@ -23,15 +18,23 @@ std::string cell(double value, double bound) {
 }
 }  // namespace
 
-int hardcases_command(Arguments& args) {
+CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "hardcases", "run every hard case and print a Markdown table of figures and bounds");
+  cmd->add_option("--simd", o.simd, "SIMD width")
+      ->check(CLI::IsMember(simd_names()))
+      ->capture_default_str();
+  cmd->add_flag("--quick", o.quick, "skip the 10,000-link chains");
+  cmd->footer(
+      "tests/hard_cases_test.cpp asserts the same bounds. Exit code 1 if any case fails, other\n"
+      "than the known failures it lists.");
+  return cmd;
+}
+
+int hardcases_command(const HardcasesOptions& options) {
   WorldSettings settings;
-  const std::string simd = args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best");
-  settings.simd = simd == "scalar" ? SimdWidth::Scalar
-                  : simd == "sse"  ? SimdWidth::Sse
-                  : simd == "avx2" ? SimdWidth::Avx2
-                                   : SimdWidth::Best;
-  const bool quick = args.take_switch("--quick");
-  args.reject_leftovers();
+  settings.simd = parse_simd(options.simd);
+  const bool quick = options.quick;
 
   const auto cases = scenes::hard_cases();
   std::printf(

@@ -2,12 +2,22 @@
 
 #include <string>
 
-#include "tool/arguments.hpp"
+#include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
+struct ProfileOptions {
+  SceneChoice scene;
+  long steps = 300;
+  WorldSettings settings;
+  std::string simd = "best";
+  bool no_warm_start = false, no_sleep = false, general = false, show_plan = false;
+  std::string json_path, csv_path, trace_path;
+};
+
+// Declares `softstep profile` and its options on the tool's app.
+CLI::App* add_profile_command(CLI::App& app, ProfileOptions& options);
 // softstep profile [chain] --links N --chains M ... : runs a scene and reports its cost.
-int profile_command(Arguments& args);
-extern const std::string kProfileUsage;
+int profile_command(ProfileOptions options);
 
 }  // namespace softstep::tool

@@ -11,10 +11,14 @@
 #include "scenes/grid_scene.hpp"
 #include "tool/arguments.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace softstep::tool {
 
-// The usage lines of the scene options.
-extern const char* const kSceneUsage;
+// What the scenes are, for the commands' help.
+extern const char* const kSceneHelp;
 
 struct SceneChoice {
   std::string scene = "chain";  // chain, grid or bridge
@@ -22,10 +26,15 @@ struct SceneChoice {
   scenes::GridOptions grid;
   scenes::BridgeOptions bridge;
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
+  // Parsed straight into; turned into the scenes' springs and masses once parsing is complete.
+  double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
+  std::string joint = "ball", layout = "horizontal";
 };
 
-// Takes the scene (first positional) and its flags, rejecting another scene's flags.
-SceneChoice take_scene_options(Arguments& args);
+// Declares the scene (a positional) and its options on `command`. Once the command line is
+// parsed, an option of another scene, or --zeta without --hertz, is a CLI::ValidationError
+// naming it. `choice` must outlive the parse.
+void add_scene_options(CLI::App& command, SceneChoice& choice);
 
 // A built scene: what the reports need to know about it.
 struct SceneRun {

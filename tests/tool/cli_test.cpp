@@ -1,0 +1,114 @@
+// The tool's command line: help generated from the options, errors that name the option and
+// the value (exit code 2), the option names the README uses, and the JSON report's keys.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "run_tool.hpp"
+
+namespace softstep::tool_test {
+namespace {
+
+TEST(ToolCli, HelpListsEveryCommandsOptions) {
+  const ToolRun top = run_tool("--help");
+  EXPECT_EQ(top.exit_code, 0);
+  for (const char* command : {"profile", "sweep", "hardcases"})
+    EXPECT_NE(top.out.find(command), std::string::npos) << command;
+
+  const ToolRun profile = run_tool("profile --help");
+  EXPECT_EQ(profile.exit_code, 0);
+  for (const char* option :
+       {"--links",    "--chains",     "--joint",     "--layout",  "--end-mass", "--size",
+        "--span",     "--loads",      "--load-mass", "--hertz",   "--zeta",     "--steps",
+        "--substeps", "--iterations", "--relax",     "--threads", "--simd",     "--no-warm-start",
+        "--no-sleep", "--general",    "--plan",      "--json",    "--csv",      "--trace"})
+    EXPECT_NE(profile.out.find(option), std::string::npos) << option;
+
+  const ToolRun sweep = run_tool("sweep --help");
+  EXPECT_EQ(sweep.exit_code, 0);
+  for (const char* option : {"--out", "--warm-start", "--rigid-hertz", "--runs", "--error",
+                             "--reference-substeps", "--reference-iterations", "--probes"})
+    EXPECT_NE(sweep.out.find(option), std::string::npos) << option;
+
+  const ToolRun hard = run_tool("hardcases --help");
+  EXPECT_EQ(hard.exit_code, 0);
+  EXPECT_NE(hard.out.find("--quick"), std::string::npos);
+}
+
+struct BadLine {
+  const char* arguments;
+  const char* option;  // the message must name it...
+  const char* value;   // ...and the value
+};
+
+TEST(ToolCli, BadValuesNameTheOptionAndTheValue) {
+  const BadLine lines[] = {
+      {"profile chain --links 0", "--links", "0"},
+      {"profile chain --links ten", "--links", "ten"},
+      {"profile --hertz nan", "--hertz", "nan"},
+      {"profile --hertz -3", "--hertz", "-3"},
+      {"profile --simd avx512", "--simd", "avx512"},
+      {"profile --joint hinge", "--joint", "hinge"},
+      {"profile grid --links 3", "--links", "grid"},
+      {"profile bridge --span 4 --loads 5", "--loads", "5"},
+      {"profile --zeta 0.5", "--zeta", "--hertz"},
+      {"profile --frobnicate", "--frobnicate", "--frobnicate"},
+      {"sweep --out d --substeps 1,0", "--substeps", "0"},
+      {"sweep --out d --warm-start maybe", "--warm-start", "maybe"},
+      {"sweep --steps 10", "--out", "--out"},
+      {"hardcases --simd wide", "--simd", "wide"},
+  };
+  for (const BadLine& line : lines) {
+    const ToolRun run = run_tool(line.arguments);
+    EXPECT_EQ(run.exit_code, 2) << line.arguments;
+    EXPECT_NE(run.err.find(line.option), std::string::npos) << line.arguments << ": " << run.err;
+    EXPECT_NE(run.err.find(line.value), std::string::npos) << line.arguments << ": " << run.err;
+    EXPECT_NE(run.err.find("--help"), std::string::npos) << "no pointer to the help: " << run.err;
+  }
+}
+
+TEST(ToolCli, ProfileWritesItsFiguresAsJson) {
+  const std::string dir = scratch_dir("profile_json");
+  const ToolRun run = run_tool(
+      "profile chain --links 20 --chains 2 --hertz 5 --zeta 0.7 --steps 10 "
+      "--threads 1 --json " +
+      dir + "/p.json --csv " + dir + "/p.csv --trace " + dir + "/t.json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir + "/p.json"));
+  for (const char* key : {"scene",
+                          "bodies",
+                          "joints",
+                          "steps",
+                          "substeps",
+                          "solve_iterations",
+                          "relax_iterations",
+                          "threads",
+                          "simd",
+                          "ms_per_step",
+                          "stage_ms",
+                          "rows_per_second",
+                          "barrier_wait_share",
+                          "colors",
+                          "max_joint_error_m",
+                          "rms_joint_error_m",
+                          "max_joint_error_run_m",
+                          "stretch_ratio",
+                          "state_hash",
+                          "awake_bodies",
+                          "sleeping_islands",
+                          "plan"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["bodies"], 42);
+  EXPECT_EQ(j["joints"], 40);
+  EXPECT_EQ(j["steps"], 10);
+  // The hash the table printed is the hash the file holds.
+  EXPECT_NE(run.out.find(j["state_hash"].get<std::string>()), std::string::npos);
+  for (const char* key : {"stages", "effects", "kernels", "rows_per_pass"})
+    EXPECT_TRUE(j["plan"].contains(key)) << key;
+  const nlohmann::json trace = nlohmann::json::parse(read_text(dir + "/t.json"));
+  ASSERT_FALSE(trace["traceEvents"].empty());
+  EXPECT_EQ(trace["traceEvents"][0]["ph"], "X");
+}
+
+}  // namespace
+}  // namespace softstep::tool_test
