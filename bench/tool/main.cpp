@@ -41,18 +41,16 @@ int main(int argc, char** argv) {
   CLI::App* hardcases_cmd = add_hardcases_command(app, hardcases);
   try {
     app.parse(argc, argv);
+    if (*profile_cmd) return profile_command(profile);
+    if (*sweep_cmd) return sweep_command(sweep);
+    if (*hardcases_cmd) return hardcases_command(hardcases);
+    return 2;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "softstep: %s\n%s\n", e.what(), usage_line(app).c_str());
-    return 2;
-  }
-  try {
-    if (*profile_cmd) return profile_command(profile);
-    if (*sweep_cmd) return sweep_command(sweep);
-    if (*hardcases_cmd) return hardcases_command(hardcases);
     return 2;
   } catch (const UsageError& e) {
     std::fprintf(stderr, "softstep: %s\n%s\n", e.what(), usage_line(app).c_str());

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "softstep/scene_file.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
@@ -17,6 +19,8 @@
 namespace softstep::tool {
 
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 const char* joint_type_name(JointType type) {
   return type == JointType::Ball ? "ball" : "distance";
@@ -123,20 +127,33 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--json", o.json_path, "write the figures as one JSON object (with the plan)")
       ->type_name("FILE");
   cmd->add_option("--csv", o.csv_path, "write one row per step")->type_name("FILE");
+  cmd->add_option("--save", o.save_path,
+                  "write the scene as built (before the first step) as a scene file")
+      ->type_name("FILE");
   cmd->add_option("--trace", o.trace_path,
                   "write Chrome / Perfetto trace events: one slice per stage per thread")
       ->type_name("FILE");
+  o.command = cmd;
   return cmd;
 }
 
 int profile_command(ProfileOptions o) {
   const SceneChoice& choice = o.scene;
   const long steps = o.steps;
-  WorldSettings settings = o.settings;
-  settings.simd = parse_simd(o.simd);
-  settings.warm_start = !o.no_warm_start;
-  settings.sleeping = !o.no_sleep;
-  settings.specialize = !o.general;
+  // A scene file's settings, overridden by the solver options given (built-in scenes start
+  // from the defaults, which the options' defaults equal).
+  WorldSettings settings = scene_settings(choice);
+  const auto given = [&](const char* option) {
+    return o.command == nullptr || o.command->count(option) > 0;
+  };
+  if (given("--substeps")) settings.substeps = o.settings.substeps;
+  if (given("--iterations")) settings.solve_iterations = o.settings.solve_iterations;
+  if (given("--relax")) settings.relax_iterations = o.settings.relax_iterations;
+  if (given("--threads")) settings.threads = o.settings.threads;
+  if (given("--simd")) settings.simd = parse_simd(o.simd);
+  if (o.no_warm_start) settings.warm_start = false;
+  if (o.no_sleep) settings.sleeping = false;
+  if (o.general) settings.specialize = false;
   const bool show_plan = o.show_plan;
   const std::string& json_path = o.json_path;
   const std::string& csv_path = o.csv_path;
@@ -144,8 +161,9 @@ int profile_command(ProfileOptions o) {
   std::vector<CsvRow> csv_rows;
 
   World world(settings);
-  world.set_profiling(true);
   const SceneRun run = build_scene(world, choice);
+  world.set_profiling(true);
+  if (!o.save_path.empty()) save_scene(world, o.save_path);
 
   const double dt = 1.0 / 60.0;
   std::vector<double> step_ms;
@@ -192,7 +210,7 @@ int profile_command(ProfileOptions o) {
     for (const auto& s : stage_ms) v.push_back(s[static_cast<std::size_t>(k)]);
     stage_median[static_cast<std::size_t>(k)] = median(v);
   }
-  const double stretch = run.stretch_ratio();
+  const double stretch = run.stretch_ratio ? run.stretch_ratio() : kNaN;
 
   std::printf("scene            %s\n", run.description.c_str());
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
@@ -227,10 +245,12 @@ int profile_command(ProfileOptions o) {
   std::printf(
       "joint error      max %.6g m, rms %.6g m after the last step; worst over the run %.6g m\n",
       errors.max, errors.rms, worst_error_run);
-  std::printf(
-      "stretch ratio    %.6g (path length through the bodies / rest length, worst chain or "
-      "column)\n",
-      stretch);
+  if (run.stretch_ratio) {
+    std::printf(
+        "stretch ratio    %.6g (path length through the bodies / rest length, worst chain or "
+        "column)\n",
+        stretch);
+  }
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {

@@ -2,14 +2,19 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "softstep/metrics.hpp"
+#include "softstep/scene_file.hpp"
 #include "tool/report_files.hpp"
 
 namespace softstep::tool {
 
 const char* const kSceneHelp =
-    "Scenes (default chain):\n"
+    "Scenes (default chain), or the path of a scene file (softstep profile ... --save FILE\n"
+    "writes one; README \"Your own scene\" has the format):\n"
     "  chain   N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally (or\n"
     "          hanging straight down, unstretched), the first link jointed to the static world;\n"
     "          M parallel chains 1 m apart. --end-mass: the last link weighs KG instead (a\n"
@@ -22,8 +27,15 @@ const char* const kSceneHelp =
 
 void add_scene_options(CLI::App& cmd, SceneChoice& c) {
   c.chain.links = 10000;
-  cmd.add_option("scene", c.scene, "the scene: chain, grid or bridge")
-      ->check(CLI::IsMember({"chain", "grid", "bridge"}))
+  cmd.add_option("scene", c.scene, "the scene: chain, grid, bridge or a scene file")
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            if (name == "chain" || name == "grid" || name == "bridge" ||
+                std::filesystem::is_regular_file(name))
+              return {};
+            return "'" + name + "' is neither a scene (chain, grid, bridge) nor a scene file";
+          },
+          "chain|grid|bridge|FILE"))
       ->capture_default_str();
   cmd.add_option("--links", c.chain.links, "chain: links per chain")
       ->check(whole_in(1, 100000000))
@@ -58,6 +70,7 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
       ->capture_default_str();
 
   cmd.parse_complete_callback([&cmd, &c] {
+    c.from_file = c.scene != "chain" && c.scene != "grid" && c.scene != "bridge";
     const auto only_for = [&](const char* flag, const char* owner) {
       if (c.scene != owner && cmd.count(flag) > 0)
         throw CLI::ValidationError(flag,
@@ -66,6 +79,18 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
     for (const char* flag : {"--links", "--chains", "--joint", "--end-mass", "--layout"})
       only_for(flag, "chain");
     only_for("--size", "grid");
+    if (c.from_file) {
+      for (const char* flag : {"--hertz", "--zeta"}) {
+        if (cmd.count(flag) > 0)
+          throw CLI::ValidationError(flag, "not for a scene file (its joints carry their springs)");
+      }
+      // Loaded once here, so that a bad file is reported before anything runs.
+      std::ifstream in(c.scene, std::ios::binary);
+      std::stringstream text;
+      text << in.rdbuf();
+      c.file_text = text.str();
+      c.file_settings = load_scene_text(c.file_text, c.scene).settings();
+    }
     for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
     if (c.bridge.loads > c.bridge.span)
       throw CLI::ValidationError("--loads", "value " + std::to_string(c.bridge.loads) +
@@ -96,7 +121,38 @@ std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<Bod
   return p;
 }
 
+WorldSettings scene_settings(const SceneChoice& c) {
+  return c.from_file ? c.file_settings : WorldSettings{};
+}
+
+namespace {
+
+SceneRun load_file_scene(World& world, const SceneChoice& c) {
+  World loaded = load_scene_text(c.file_text, c.scene);
+  loaded.set_settings(world.settings());
+  world = std::move(loaded);
+  SceneRun run;
+  run.joints = world.joint_ids();
+  Eigen::AlignedBox3d box;
+  for (BodyId b : world.body_ids()) {
+    const BodyState s = world.body(b);
+    box.extend(s.position);
+    if (s.type == BodyType::Dynamic) run.bodies.push_back(b);
+  }
+  std::size_t ball = 0;
+  for (JointId j : run.joints) ball += world.joint_type(j) == JointType::Ball ? 1 : 0;
+  run.rows = static_cast<double>(world.step_plan().rows_per_pass);
+  run.description = "file " + c.scene + ": " + std::to_string(world.body_count()) + " bodies, " +
+                    std::to_string(ball) + " ball and " + std::to_string(run.joints.size() - ball) +
+                    " distance joints";
+  run.reach = box.isEmpty() ? 0.0 : box.diagonal().norm();
+  return run;
+}
+
+}  // namespace
+
 SceneRun build_scene(World& world, const SceneChoice& c) {
+  if (c.from_file) return load_file_scene(world, c);
   SceneRun run;
   if (c.scene == "chain") {
     const scenes::ChainOptions& chain = c.chain;

@@ -88,8 +88,8 @@ double energy_offset(const World& world, const SceneRun& run) {
   return -(lowest - run.reach) * weight;
 }
 
-WorldSettings settings_of(const Setting& s) {
-  WorldSettings w;
+// The scene's settings (a scene file's, or the defaults) with the setting's knobs.
+WorldSettings settings_of(const Setting& s, WorldSettings w) {
   w.substeps = s.substeps;
   w.relax_iterations = s.relax;
   w.solve_iterations = s.iterations;
@@ -229,7 +229,7 @@ int sweep_command(const SweepOptions& o) {
   std::vector<std::vector<Eigen::Vector3d>> reference_positions(
       static_cast<std::size_t>(steps + 1));
   {
-    WorldSettings fine;
+    WorldSettings fine = scene_settings(choice);
     fine.substeps = reference_substeps;
     fine.solve_iterations = reference_iterations;
     fine.relax_iterations = reference_iterations;
@@ -259,7 +259,7 @@ int sweep_command(const SweepOptions& o) {
         const Setting& setting = grid[g];
         Measured& m = results[g];
         const bool measuring = r == 0;
-        World world(settings_of(setting));
+        World world(settings_of(setting, scene_settings(choice)));
         const SceneRun run = build_scene(world, choice);
         description = run.description;
         body_count = world.body_count();
@@ -289,7 +289,7 @@ int sweep_command(const SweepOptions& o) {
             m.drift = worst(
                 m.drift, metrics::position_drift(world, run.bodies,
                                                  reference_positions[static_cast<std::size_t>(i)]));
-            m.stretch = worst(m.stretch, run.stretch_ratio());
+            if (run.stretch_ratio) m.stretch = worst(m.stretch, run.stretch_ratio());
           }
           if (probe) {
             try {

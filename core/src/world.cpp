@@ -174,7 +174,8 @@ bool World::is_valid(BodyId id) const {
 BodyState World::body(BodyId id) const {
   const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
   return {b.type, b.position, b.orientation,   b.linear_velocity, b.angular_velocity,
-          b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping};
+          b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping,
+          b.never_sleep};
 }
 
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {

@@ -2,6 +2,7 @@
 // the value (exit code 2), the option names the README uses, and the JSON report's keys.
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "run_tool.hpp"
@@ -108,6 +109,51 @@ TEST(ToolCli, ProfileWritesItsFiguresAsJson) {
   const nlohmann::json trace = nlohmann::json::parse(read_text(dir + "/t.json"));
   ASSERT_FALSE(trace["traceEvents"].empty());
   EXPECT_EQ(trace["traceEvents"][0]["ph"], "X");
+}
+
+}  // namespace
+}  // namespace softstep::tool_test
+
+namespace softstep::tool_test {
+namespace {
+
+std::string state_hash_line(const std::string& out) {
+  const std::size_t at = out.find("state hash");
+  return at == std::string::npos ? "" : out.substr(at, out.find('\n', at) - at);
+}
+
+TEST(ToolCli, SavedSceneProfilesToTheSameState) {
+  const std::string dir = scratch_dir("saved_scene");
+  const std::string common = " --steps 20 --threads 1";
+  for (const std::string scene : {"chain --links 30 --chains 2 --joint distance --hertz 4",
+                                  "grid --size 6", "bridge --span 30 --loads 3"}) {
+    SCOPED_TRACE(scene);
+    const ToolRun built = run_tool("profile " + scene + common + " --save " + dir + "/s.json");
+    ASSERT_EQ(built.exit_code, 0) << built.err;
+    const ToolRun loaded = run_tool("profile " + dir + "/s.json" + common);
+    ASSERT_EQ(loaded.exit_code, 0) << loaded.err;
+    EXPECT_FALSE(state_hash_line(built.out).empty());
+    EXPECT_EQ(state_hash_line(loaded.out), state_hash_line(built.out));
+  }
+  // The other command that takes a scene takes a file too.
+  const ToolRun sweep = run_tool("sweep " + dir + "/s.json --out " + dir +
+                                 "/sweep --steps 4 --substeps 1 --relax 0 --runs 1 --probes 1");
+  EXPECT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_NE(read_text(dir + "/sweep/results.csv").find("substeps"), std::string::npos);
+}
+
+TEST(ToolCli, ABadSceneFileIsNamedWithTheFieldAndValue) {
+  const std::string dir = scratch_dir("bad_scene");
+  ASSERT_EQ(run_tool("profile chain --links 3 --steps 1 --save " + dir + "/s.json").exit_code, 0);
+  std::string text = read_text(dir + "/s.json");
+  text.replace(text.find("\"mass\":1.0"), 10, "\"mass\":-3");
+  { std::ofstream(dir + "/bad.json") << text; }
+  const ToolRun run = run_tool("profile " + dir + "/bad.json");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find(dir + "/bad.json: /bodies/1/mass = -3"), std::string::npos) << run.err;
+  const ToolRun options = run_tool("profile " + dir + "/s.json --links 4");
+  EXPECT_EQ(options.exit_code, 2);
+  EXPECT_NE(options.err.find("--links"), std::string::npos) << options.err;
 }
 
 }  // namespace

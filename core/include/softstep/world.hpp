@@ -29,6 +29,7 @@ struct BodyState {
   double gravity_scale;
   double linear_damping;
   double angular_damping;
+  bool never_sleep;
 };
 
 // How the solver has laid out the joints (see graph_coloring/).
@@ -93,6 +94,8 @@ class World {
   // its island.
   bool is_awake(BodyId id) const;
   std::size_t body_count() const;
+  // The live bodies, in slot order (creation order while none was destroyed).
+  std::vector<BodyId> body_ids() const;
 
   JointId create_ball_joint(const BallJointDef& def);
   JointId create_distance_joint(const DistanceJointDef& def);
@@ -101,6 +104,8 @@ class World {
   JointType joint_type(JointId id) const;
   JointReading joint_reading(JointId id) const;
   std::size_t joint_count() const;
+  // The live joints, in slot order.
+  std::vector<JointId> joint_ids() const;
 
   // Advances the world by dt seconds (> 0, finite) in settings().substeps sub-steps.
   void step(double dt);
