@@ -3,12 +3,15 @@
 #include <string>
 
 #include "tool/arguments.hpp"
+#include "tool/view_recorder.hpp"
 
 namespace softstep::tool {
 
 struct HardcasesOptions {
   std::string simd = "best";
   bool quick = false;
+  std::string view_dir;  // non-empty: a viewer page per case goes there
+  ViewLimits limits;
 };
 
 // Declares `softstep hardcases` and its options on the tool's app.

@@ -1,4 +1,4 @@
-// softstep: the command-line tool. Subcommands: profile, sweep, hardcases. The options are
+// softstep: the command-line tool. Subcommands: profile, sweep, hardcases, view. The options are
 // declared with CLI11 (each command's file declares its own), which writes `--help` and names
 // the option and the value in its errors.
 #include <CLI/CLI.hpp>
@@ -10,6 +10,7 @@
 #include "tool/hardcases_command.hpp"
 #include "tool/profile_command.hpp"
 #include "tool/sweep_command.hpp"
+#include "tool/view_command.hpp"
 
 namespace {
 
@@ -30,20 +31,23 @@ std::string usage_line(const CLI::App& app) {
 
 int main(int argc, char** argv) {
   using namespace softstep::tool;
-  CLI::App app("softstep: profile, sweep and check soft-constraint scenes", "softstep");
+  CLI::App app("softstep: profile, sweep, check and view soft-constraint scenes", "softstep");
   app.require_subcommand(1);
   app.fallthrough(false);
   ProfileOptions profile;
   SweepOptions sweep;
   HardcasesOptions hardcases;
+  ViewOptions view;
   CLI::App* profile_cmd = add_profile_command(app, profile);
   CLI::App* sweep_cmd = add_sweep_command(app, sweep);
   CLI::App* hardcases_cmd = add_hardcases_command(app, hardcases);
+  CLI::App* view_cmd = add_view_command(app, view);
   try {
     app.parse(argc, argv);
     if (*profile_cmd) return profile_command(profile);
     if (*sweep_cmd) return sweep_command(sweep);
     if (*hardcases_cmd) return hardcases_command(hardcases);
+    if (*view_cmd) return view_command(view);
     return 2;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

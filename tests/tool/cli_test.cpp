@@ -158,3 +158,48 @@ TEST(ToolCli, ABadSceneFileIsNamedWithTheFieldAndValue) {
 
 }  // namespace
 }  // namespace softstep::tool_test
+
+namespace softstep::tool_test {
+namespace {
+
+TEST(ToolCli, ViewSubsamplesBodiesJointsAndFrames) {
+  const std::string dir = scratch_dir("view_subsample");
+  ASSERT_EQ(run_tool("profile chain --links 200 --steps 1 --save " + dir + "/s.json").exit_code, 0);
+  const ToolRun run = run_tool("view " + dir +
+                               "/s.json --steps 100 --max-bodies 10 --max-joints 20 "
+                               "--frames 10 --out " +
+                               dir + "/page");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Every 20th body (10) plus both ends of every 10th joint (40), some shared; at most 10
+  // frames before the last step's.
+  EXPECT_NE(run.out.find("of 201 bodies, 20 of 200 joints"), std::string::npos) << run.out;
+  const std::size_t frames_at = run.out.find(" frames of 100 steps");
+  ASSERT_NE(frames_at, std::string::npos) << run.out;
+  const int frames = std::stoi(run.out.substr(run.out.rfind(' ', frames_at - 1) + 1));
+  EXPECT_LE(frames, 11);
+  EXPECT_GE(frames, 5);
+  const std::string page = read_text(dir + "/page/index.html");
+  // Self-contained: no resource is fetched from anywhere.
+  for (const char* fetch : {"src=", "href=", "http://", "https://", "import(", "fetch("})
+    EXPECT_EQ(page.find(fetch), std::string::npos) << fetch;
+}
+
+TEST(ToolCli, HardcasesWriteAViewerPagePerCase) {
+  const std::string dir = scratch_dir("hardcases_view");
+  const ToolRun run = run_tool("hardcases --quick --view " + dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string index = read_text(dir + "/index.html");
+  int pages = 0;
+  for (std::size_t at = index.find("href=\""); at != std::string::npos;
+       at = index.find("href=\"", at + 1), ++pages) {
+    const std::string file = index.substr(at + 6, index.find('"', at + 6) - at - 6);
+    const std::string page = read_text(dir + "/" + file);
+    EXPECT_NE(page.find("data-state=\"loading\""), std::string::npos) << file;
+    EXPECT_EQ(page.find("/*SOFTSTEP_DATA*/"), std::string::npos) << file << ": no data";
+  }
+  EXPECT_GE(pages, 15);  // every case but the 10,000-link chains
+  EXPECT_NE(index.find("kinematic driver"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace softstep::tool_test
