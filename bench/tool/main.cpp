@@ -1,6 +1,6 @@
-// softstep: the command-line tool. Subcommands: profile, sweep, hardcases, view. The options are
-// declared with CLI11 (each command's file declares its own), which writes `--help` and names
-// the option and the value in its errors.
+// softstep: the command-line tool. Subcommands: profile, sweep, hardcases, view, replay. The
+// options are declared with CLI11 (each command's file declares its own), which writes `--help` and
+// names the option and the value in its errors.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -9,6 +9,7 @@
 #include "tool/arguments.hpp"
 #include "tool/hardcases_command.hpp"
 #include "tool/profile_command.hpp"
+#include "tool/replay_command.hpp"
 #include "tool/sweep_command.hpp"
 #include "tool/view_command.hpp"
 
@@ -38,16 +39,19 @@ int main(int argc, char** argv) {
   SweepOptions sweep;
   HardcasesOptions hardcases;
   ViewOptions view;
+  ReplayOptions replay;
   CLI::App* profile_cmd = add_profile_command(app, profile);
   CLI::App* sweep_cmd = add_sweep_command(app, sweep);
   CLI::App* hardcases_cmd = add_hardcases_command(app, hardcases);
   CLI::App* view_cmd = add_view_command(app, view);
+  CLI::App* replay_cmd = add_replay_command(app, replay);
   try {
     app.parse(argc, argv);
     if (*profile_cmd) return profile_command(profile);
     if (*sweep_cmd) return sweep_command(sweep);
     if (*hardcases_cmd) return hardcases_command(hardcases);
     if (*view_cmd) return view_command(view);
+    if (*replay_cmd) return replay_command(replay);
     return 2;
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);

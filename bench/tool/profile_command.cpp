@@ -130,6 +130,9 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--save", o.save_path,
                   "write the scene as built (before the first step) as a scene file")
       ->type_name("FILE");
+  cmd->add_option("--record", o.record_path,
+                  "record the run (softstep replay FILE checks it step by step)")
+      ->type_name("FILE");
   cmd->add_option("--trace", o.trace_path,
                   "write Chrome / Perfetto trace events: one slice per stage per thread")
       ->type_name("FILE");
@@ -164,6 +167,7 @@ int profile_command(ProfileOptions o) {
   const SceneRun run = build_scene(world, choice);
   world.set_profiling(true);
   if (!o.save_path.empty()) save_scene(world, o.save_path);
+  if (!o.record_path.empty()) world.start_recording(o.record_path);
 
   const double dt = 1.0 / 60.0;
   std::vector<double> step_ms;
@@ -195,6 +199,7 @@ int profile_command(ProfileOptions o) {
       bar.update(i + 1);
     }
   }
+  world.stop_recording();
   const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
   const SolverLayout layout = world.solver_layout();
   const double ms = median(step_ms);

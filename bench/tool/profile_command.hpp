@@ -12,7 +12,7 @@ struct ProfileOptions {
   WorldSettings settings;
   std::string simd = "best";
   bool no_warm_start = false, no_sleep = false, general = false, show_plan = false;
-  std::string json_path, csv_path, trace_path, save_path;
+  std::string json_path, csv_path, trace_path, save_path, record_path;
   // The parsed command: which solver options were given (a scene file's settings hold
   // otherwise).
   const CLI::App* command = nullptr;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "recording/recorder.hpp"
 #include "validation.hpp"
 #include "world_impl.hpp"
 
@@ -118,6 +119,7 @@ void World::set_settings(const WorldSettings& settings) {
   w.settings = settings;
   if (!settings.sleeping) w.wake_all();
   w.content_changed();
+  if (w.recorder) w.recorder->set_settings(settings);
 }
 
 // ---- bodies -------------------------------------------------------------------------------
@@ -147,6 +149,7 @@ BodyId World::create_body(const BodyDef& def) {
   b.sleep_time = 0.0;
   ++w.body_count;
   w.content_changed();
+  if (w.recorder) w.recorder->create_body(def, {slot, b.generation});
   return {slot, b.generation};
 }
 
@@ -163,6 +166,7 @@ void World::destroy_body(BodyId id) {
   w.free_bodies.push_back(slot);
   --w.body_count;
   w.content_changed();
+  if (w.recorder) w.recorder->destroy_body(id);
 }
 
 bool World::is_valid(BodyId id) const {
@@ -183,6 +187,7 @@ void World::set_position(BodyId id, const Eigen::Vector3d& position) {
   validation::finite("set_position", "position", position);
   impl_->touch(slot);
   impl_->bodies[slot].position = position;
+  if (impl_->recorder) impl_->recorder->set_vector(recording::Tag::SetPosition, id, position);
 }
 
 void World::set_orientation(BodyId id, const Quaternion& orientation) {
@@ -190,6 +195,7 @@ void World::set_orientation(BodyId id, const Quaternion& orientation) {
   const Quaternion q = validation::unit_quaternion("set_orientation", "orientation", orientation);
   impl_->touch(slot);
   impl_->bodies[slot].orientation = q;
+  if (impl_->recorder) impl_->recorder->set_orientation(id, orientation);
 }
 
 namespace {
@@ -212,10 +218,13 @@ void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen:
 
 void World::set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity) {
   set_velocity(*impl_, "set_linear_velocity", id, velocity, &BodySlot::linear_velocity);
+  if (impl_->recorder) impl_->recorder->set_vector(recording::Tag::SetLinearVelocity, id, velocity);
 }
 
 void World::set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity) {
   set_velocity(*impl_, "set_angular_velocity", id, velocity, &BodySlot::angular_velocity);
+  if (impl_->recorder)
+    impl_->recorder->set_vector(recording::Tag::SetAngularVelocity, id, velocity);
 }
 
 void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia) {
@@ -232,6 +241,7 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
   b.inertia = inertia;
   b.inverse_inertia = inertia.inverse();
   b.diagonal_inertia = inertia.isDiagonal(0.0);
+  if (impl_->recorder) impl_->recorder->set_mass_properties(id, mass, inertia);
 }
 
 void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
@@ -261,6 +271,7 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
   w.touch(slot);
   b.linear_velocity = v;
   b.angular_velocity = omega;
+  if (w.recorder) w.recorder->apply_impulse(id, impulse, world_point);
 }
 
 bool World::is_awake(BodyId id) const {
@@ -327,6 +338,12 @@ static JointId add_joint(World::Impl& w, JointSlot&& joint) {
   return {slot, j.generation};
 }
 
+// Reports a created joint to a running recording.
+static JointId recorded(const World& world, World::Impl& w, JointId id) {
+  if (w.recorder) w.recorder->create_joint(world, id);
+  return id;
+}
+
 JointId World::create_ball_joint(const BallJointDef& def) {
   Impl& w = *impl_;
   const JointEnds ends =
@@ -339,7 +356,7 @@ JointId World::create_ball_joint(const BallJointDef& def) {
   j.local_anchor_a = def.local_anchor_a;
   j.local_anchor_b = def.local_anchor_b;
   j.spring = def.spring;
-  return add_joint(w, std::move(j));
+  return recorded(*this, w, add_joint(w, std::move(j)));
 }
 
 JointId World::create_distance_joint(const DistanceJointDef& def) {
@@ -367,7 +384,7 @@ JointId World::create_distance_joint(const DistanceJointDef& def) {
   j.min_length = def.min_length;
   j.max_length = def.max_length;
   j.rest_length = std::clamp(def.rest_length, def.min_length, def.max_length);
-  return add_joint(w, std::move(j));
+  return recorded(*this, w, add_joint(w, std::move(j)));
 }
 
 void World::destroy_joint(JointId id) {
@@ -387,6 +404,7 @@ void World::destroy_joint(JointId id) {
   j.impulse.setZero();
   w.free_joints.push_back(slot);
   --w.joint_count;
+  if (w.recorder) w.recorder->destroy_joint(id);
 }
 
 bool World::is_valid(JointId id) const {

@@ -14,6 +14,10 @@
 
 namespace softstep {
 
+namespace recording {
+class Recorder;
+}
+
 struct BodySlot {
   std::uint32_t generation = 0;
   bool alive = false;
@@ -157,6 +161,7 @@ struct World::Impl {
   SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
   StepPlan plan;
   bool plan_built = false;  // false after any change of content or settings
+  std::unique_ptr<recording::Recorder> recorder;  // while recording (recording/recorder.cpp)
 
   // Sleeping islands: the body slots of each, in slot order; emptied when woken.
   std::vector<std::vector<std::uint32_t>> islands;

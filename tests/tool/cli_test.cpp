@@ -203,3 +203,28 @@ TEST(ToolCli, HardcasesWriteAViewerPagePerCase) {
 
 }  // namespace
 }  // namespace softstep::tool_test
+
+namespace softstep::tool_test {
+namespace {
+
+TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
+  const std::string dir = scratch_dir("record");
+  const ToolRun profile =
+      run_tool("profile chain --links 20 --hertz 4 --steps 30 --record " + dir + "/run.rec");
+  ASSERT_EQ(profile.exit_code, 0) << profile.err;
+  const ToolRun replay = run_tool("replay " + dir + "/run.rec");
+  EXPECT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_NE(replay.out.find("30 steps"), std::string::npos) << replay.out;
+  // The same final state as the profiled run.
+  const std::string hash = profile.out.substr(profile.out.find("state hash") + 17, 16);
+  EXPECT_NE(replay.out.find(hash), std::string::npos) << replay.out;
+
+  std::string bytes = read_text(dir + "/run.rec");
+  { std::ofstream(dir + "/cut.rec", std::ios::binary) << bytes.substr(0, bytes.size() - 30); }
+  const ToolRun cut = run_tool("replay " + dir + "/cut.rec");
+  EXPECT_EQ(cut.exit_code, 1);
+  EXPECT_NE(cut.err.find("cut.rec"), std::string::npos) << cut.err;
+}
+
+}  // namespace
+}  // namespace softstep::tool_test

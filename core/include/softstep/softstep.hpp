@@ -6,6 +6,7 @@
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"
 #include "softstep/profile.hpp"
+#include "softstep/recording.hpp"
 #include "softstep/scene_file.hpp"
 #include "softstep/spring.hpp"
 #include "softstep/step_plan.hpp"

@@ -16,9 +16,13 @@ namespace softstep::scene {
 class BodyIndex {
  public:
   explicit BodyIndex(const std::vector<BodyId>& bodies);
-  std::size_t operator()(BodyId id) const { return of_slot_[id.index]; }
+  // Names each body by its slot (recordings: the replay gets the same ids).
+  static BodyIndex by_slot() { return BodyIndex(); }
+  std::size_t operator()(BodyId id) const { return identity_ ? id.index : of_slot_[id.index]; }
 
  private:
+  BodyIndex() : identity_(true) {}
+  bool identity_ = false;
   std::vector<std::size_t> of_slot_;
 };
 

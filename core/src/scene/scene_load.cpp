@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "body_format.hpp"
 #include "joint_formats.hpp"
 #include "json_reader.hpp"
 #include "settings_format.hpp"
@@ -15,32 +16,6 @@ using scene::json;
 using scene::ObjectReader;
 
 constexpr int kVersion = 1;
-
-BodyType body_type(ObjectReader& fields) {
-  const std::string type = fields.text("type");
-  if (type == "static") return BodyType::Static;
-  if (type == "kinematic") return BodyType::Kinematic;
-  if (type == "dynamic") return BodyType::Dynamic;
-  scene::fail(fields.source(), fields.path_of("type"),
-              "expected \"static\", \"kinematic\" or \"dynamic\"");
-}
-
-BodyDef read_body(ObjectReader& fields) {
-  BodyDef def;
-  def.type = body_type(fields);
-  def.position = fields.vec3("position");
-  def.orientation = fields.quaternion("orientation", def.orientation);
-  def.linear_velocity = fields.vec3("linear_velocity", def.linear_velocity);
-  def.angular_velocity = fields.vec3("angular_velocity", def.angular_velocity);
-  def.mass = fields.number("mass", def.mass);
-  def.inertia = fields.mat3("inertia", def.inertia);
-  def.gravity_scale = fields.number("gravity_scale", def.gravity_scale);
-  def.linear_damping = fields.number("linear_damping", def.linear_damping);
-  def.angular_damping = fields.number("angular_damping", def.angular_damping);
-  def.never_sleep = fields.boolean("never_sleep", def.never_sleep);
-  fields.no_other_keys();
-  return def;
-}
 
 std::string element_path(const ObjectReader& parent, const char* key, std::size_t i) {
   return parent.path_of(key) + "/" + std::to_string(i);
@@ -73,7 +48,7 @@ World load_scene_text(const std::string& json_text, const std::string& name) {
   ids.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     ObjectReader fields(source, bodies[i], element_path(top, "bodies", i));
-    const BodyDef def = read_body(fields);
+    const BodyDef def = scene::read_body(fields);
     ids.push_back(fields.call([&] { return world.create_body(def); }));
   }
 

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "body_format.hpp"
 #include "joint_formats.hpp"
 #include "settings_format.hpp"
 #include "softstep/scene_file.hpp"
@@ -10,32 +11,6 @@
 namespace softstep {
 
 namespace {
-
-const char* body_type_name(BodyType type) {
-  return type == BodyType::Static      ? "static"
-         : type == BodyType::Kinematic ? "kinematic"
-                                       : "dynamic";
-}
-
-nlohmann::json body_json(const BodyState& b) {
-  const Quaternion& q = b.orientation;
-  nlohmann::json j = {{"type", body_type_name(b.type)},
-                      {"position", scene::vector_json(b.position)},
-                      {"orientation", {q.w(), q.x(), q.y(), q.z()}},
-                      {"linear_velocity", scene::vector_json(b.linear_velocity)},
-                      {"angular_velocity", scene::vector_json(b.angular_velocity)}};
-  // Static and kinematic bodies have no mass (the API ignores one given).
-  if (b.type == BodyType::Dynamic) {
-    j["mass"] = b.mass;
-    j["inertia"] = nlohmann::json::array();
-    for (int r = 0; r < 3; ++r) j["inertia"].push_back(scene::vector_json(b.inertia.row(r)));
-  }
-  j["gravity_scale"] = b.gravity_scale;
-  j["linear_damping"] = b.linear_damping;
-  j["angular_damping"] = b.angular_damping;
-  j["never_sleep"] = b.never_sleep;
-  return j;
-}
 
 void append_list(std::string& out, const char* key, const std::vector<std::string>& lines,
                  bool last) {
@@ -51,7 +26,8 @@ std::string save_scene_text(const World& world) {
   const std::vector<BodyId> bodies = world.body_ids();
   std::vector<std::string> body_lines;
   body_lines.reserve(bodies.size());
-  for (BodyId id : bodies) body_lines.push_back(body_json(world.body(id)).dump());
+  for (BodyId id : bodies)
+    body_lines.push_back(scene::body_json(scene::body_def(world.body(id))).dump());
 
   const scene::BodyIndex index(bodies);
   std::vector<std::string> joint_lines;
