@@ -294,6 +294,12 @@ TEST(SceneFile, BrokenFilesAreRefusedWithTheirPathAndValue) {
        {},
        "/bodies/3/masss",
        "unknown field"},
+      // The fuzzer's find: "~" and "/" in a key are escaped in the path that quotes it.
+      {"key with ~ and /",
+       [](J& j) { j["bodies"][3]["m~a/ss"] = 2.0; },
+       {},
+       "/bodies/3/m~0a~1ss",
+       "= 2.0: unknown field"},
       {"bad settings",
        [](J& j) { j["settings"]["substeps"] = 0; },
        {},

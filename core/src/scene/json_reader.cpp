@@ -11,9 +11,14 @@ namespace {
 // The value at `path` as the file wrote it, or what stands for it when it is not there.
 std::string quoted_value(const Source& source, const std::string& path) {
   if (source.root == nullptr) return "";
-  const json::json_pointer pointer(path);
-  if (!source.root->contains(pointer)) return " (missing)";
-  std::string text = source.root->at(pointer).dump();
+  std::string text;
+  try {
+    const json::json_pointer pointer(path);
+    if (!source.root->contains(pointer)) return " (missing)";
+    text = source.root->at(pointer).dump();
+  } catch (const json::exception&) {
+    return "";  // a path the API named that the file does not spell: quote nothing
+  }
   if (text.size() > 80) text = text.substr(0, 77) + "...";
   return " = " + text;
 }
@@ -29,6 +34,12 @@ void fail(const Source& source, const std::string& path, const std::string& why)
 ObjectReader::ObjectReader(const Source& source, const json& object, std::string path)
     : source_(source), object_(object), path_(std::move(path)) {
   if (!object_.is_object()) fail(source_, path_, "expected an object");
+}
+
+std::string ObjectReader::path_of(const std::string& key) const {
+  std::string escaped;
+  for (char c : key) escaped += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return path_ + "/" + escaped;
 }
 
 bool ObjectReader::has(const char* key) const {
@@ -174,7 +185,7 @@ const json& ObjectReader::object(const char* key) {
 void ObjectReader::no_other_keys() const {
   for (const auto& [key, value] : object_.items()) {
     if (std::find(read_.begin(), read_.end(), key) == read_.end())
-      fail(source_, path_of(key.c_str()), "unknown field");
+      fail(source_, path_of(key), "unknown field");
   }
 }
 

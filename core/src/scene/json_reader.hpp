@@ -49,7 +49,8 @@ class ObjectReader {
   // Rejects any key no read asked for: a misspelt field must not be silently ignored.
   void no_other_keys() const;
 
-  std::string path_of(const char* key) const { return path_ + "/" + key; }
+  // The JSON pointer of a key of this object ("~" and "/" in the key escaped as RFC 6901 says).
+  std::string path_of(const std::string& key) const;
   const Source& source() const { return source_; }
 
   // Runs an API call; an InvalidArgument it throws becomes a SceneFileError at this object's
