@@ -31,21 +31,6 @@ std::string page_name(const std::string& case_name) {
   return name + ".html";
 }
 
-std::string html_text(const std::string& text) {
-  std::string out;
-  for (char ch : text) {
-    if (ch == '<')
-      out += "&lt;";
-    else if (ch == '>')
-      out += "&gt;";
-    else if (ch == '&')
-      out += "&amp;";
-    else
-      out += ch;
-  }
-  return out;
-}
-
 std::string cell(double value, double bound) {
   char b[64];
   std::snprintf(b, sizeof b, "%.3g (<= %.3g)", value, bound);
@@ -110,8 +95,8 @@ int hardcases_command(const HardcasesOptions& options) {
       std::filesystem::create_directories(options.view_dir);
       const std::string file = page_name(c.name);
       write_file(options.view_dir + "/" + file, recorder->page());
-      index += "<li><a href=\"" + file + "\">" + html_text(c.name) +
-               "</a>: " + html_text(c.parameters) + "</li>\n";
+      index += "<li><a href=\"" + file + "\">" + markup_text(c.name) +
+               "</a>: " + markup_text(c.parameters) + "</li>\n";
     }
     const bool ok = o.passed();
     const bool known_failure = !ok && !c.known_failure.empty();

@@ -37,6 +37,21 @@ std::string Trace::text() const {
   return nlohmann::json{{"traceEvents", events}}.dump() + "\n";
 }
 
+std::string markup_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
+}
+
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;

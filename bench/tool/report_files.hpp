@@ -30,6 +30,9 @@ class Trace {
   std::vector<Event> events_;
 };
 
+// Text made safe inside HTML or SVG: <, > and & escaped.
+std::string markup_text(const std::string& text);
+
 // Throws std::runtime_error naming the path when the file cannot be written.
 void write_file(const std::string& path, const std::string& text);
 

@@ -111,11 +111,6 @@ TEST(ToolCli, ProfileWritesItsFiguresAsJson) {
   EXPECT_EQ(trace["traceEvents"][0]["ph"], "X");
 }
 
-}  // namespace
-}  // namespace softstep::tool_test
-
-namespace softstep::tool_test {
-namespace {
 
 std::string state_hash_line(const std::string& out) {
   const std::size_t at = out.find("state hash");
@@ -156,11 +151,6 @@ TEST(ToolCli, ABadSceneFileIsNamedWithTheFieldAndValue) {
   EXPECT_NE(options.err.find("--links"), std::string::npos) << options.err;
 }
 
-}  // namespace
-}  // namespace softstep::tool_test
-
-namespace softstep::tool_test {
-namespace {
 
 TEST(ToolCli, ViewSubsamplesBodiesJointsAndFrames) {
   const std::string dir = scratch_dir("view_subsample");
@@ -201,11 +191,6 @@ TEST(ToolCli, HardcasesWriteAViewerPagePerCase) {
   EXPECT_NE(index.find("kinematic driver"), std::string::npos);
 }
 
-}  // namespace
-}  // namespace softstep::tool_test
-
-namespace softstep::tool_test {
-namespace {
 
 TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
   const std::string dir = scratch_dir("record");
