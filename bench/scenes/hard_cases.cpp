@@ -14,6 +14,18 @@ namespace {
 constexpr double kG = 9.81;
 constexpr double kPi = std::numbers::pi;
 
+// Per thread, so that the test suite's parallel cases never see another's watcher.
+thread_local HardCaseWatcher watcher;
+
+void watch_start(World& world) {
+  if (watcher) watcher(world, 0, 0.0);
+}
+
+void watched_step(World& world, long step, double dt) {
+  world.step(dt);
+  if (watcher) watcher(world, step, dt);
+}
+
 // Steps a world and records the figures of a case.
 class Recorder {
  public:
@@ -27,6 +39,7 @@ class Recorder {
         energy_ref_(energy_ref),
         joint_stiffness_(std::move(joint_stiffness)) {
     e0_ = energy();
+    watch_start(world_);
   }
 
   // Steps `steps` times; samples every `every` steps (and the last). With track_error the
@@ -34,7 +47,7 @@ class Recorder {
   HardCaseFigures run(double dt, int steps, int every, bool track_error) {
     HardCaseFigures f;
     for (int i = 1; i <= steps; ++i) {
-      world_.step(dt);
+      watched_step(world_, i, dt);
       if (i % every != 0 && i != steps) continue;
       double e = 0.0;
       sample(f, e);
@@ -195,8 +208,9 @@ HardCaseFigures run_spring(const Spring& spring, double mass, double dt, int ste
   const double e0 = energy();
   HardCaseFigures f;
   energy_ratio = 1.0;
+  watch_start(world);
   for (int i = 0; i < steps; ++i) {
-    world.step(dt);
+    watched_step(world, i + 1, dt);
     const BodyState b = world.body(moving);
     if (!b.position.allFinite() || !b.linear_velocity.allFinite()) f.finite = false;
     f.max_speed = std::max(f.max_speed, b.linear_velocity.norm());
@@ -365,10 +379,11 @@ HardCaseOutcome run_kinematic_driver(WorldSettings s) {
   const double omega = 0.5 * kPi;
   HardCaseFigures f;
   double worst = 0.0;
+  watch_start(world);
   for (int i = 0; i < 600; ++i) {
     const double t = i / 60.0;
     world.set_linear_velocity(k, {-omega * std::sin(omega * t), 0.0, omega * std::cos(omega * t)});
-    world.step(1.0 / 60.0);
+    watched_step(world, i + 1, 1.0 / 60.0);
     for (BodyId b : bodies) {
       const BodyState st = world.body(b);
       f.finite = f.finite && st.position.allFinite() && st.linear_velocity.allFinite();
@@ -579,6 +594,10 @@ std::vector<HardCase> hard_cases() {
                    "20 links between two static bodies twice the chain's length apart, 10 s", false,
                    [](const WorldSettings& s) { return run_overstretched(s); }});
   return cases;
+}
+
+void watch_hard_cases(HardCaseWatcher w) {
+  watcher = std::move(w);
 }
 
 }  // namespace softstep::scenes

@@ -51,6 +51,12 @@ struct HardCase {
 
 std::vector<HardCase> hard_cases();
 
+// Sees the world of every hard case before its first step (step 0) and after each step (the
+// tool's `hardcases --view` records them). A case that runs several worlds in turn shows each
+// from step 0. Applies to cases run on the calling thread; empty: none (the default).
+using HardCaseWatcher = std::function<void(World& world, long step, double dt)>;
+void watch_hard_cases(HardCaseWatcher watcher);
+
 // Static stretch of each joint of a chain hanging at rest from a static anchor, ball joints
 // on the chain's axis, links of the given masses (top first): T_i / (m_eff_i omega^2).
 std::vector<double> hanging_chain_stretch(const std::vector<double>& masses, double gravity,

@@ -1,46 +1,37 @@
-// A small argument reader for the softstep tool: --name value flags, each consumed once,
-// with errors that say which flag and which value was wrong (the tool exits 2 on them).
+// The softstep tool's options are declared with CLI11, which generates `--help` from them and
+// names the option and the bad value in its errors. This header holds what the commands share
+// on top of it: range checks that print their bounds readably, and the SIMD width names.
 #pragma once
 
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "softstep/world_settings.hpp"
 
+namespace CLI {
+class App;
+class Validator;
+}  // namespace CLI
+
 namespace softstep::tool {
 
+// A command line that parsed but does not make sense (an option of another scene, --zeta
+// without --hertz): the tool prints it with the command's usage and exits 2, as for CLI11's own
+// parse errors.
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-class Arguments {
- public:
-  explicit Arguments(std::span<char* const> args);
-  // Positional words before the first flag (subcommand, scene name).
-  std::vector<std::string> take_positionals();
-  bool take_switch(const std::string& flag);
-  std::string take_string(const std::string& flag, const std::string& fallback);
-  std::string take_choice(const std::string& flag, const std::vector<std::string>& choices,
-                          const std::string& fallback);
-  long take_int(const std::string& flag, long fallback, long min, long max);
-  // A comma-separated list of whole numbers, each in [min, max]: "1,2,4".
-  std::vector<long> take_int_list(const std::string& flag, const std::string& fallback, long min,
-                                  long max);
-  double take_double(const std::string& flag, double fallback, double min, double max);
-  bool has(const std::string& flag) const;
-  // Throws UsageError naming any flag nobody took.
-  void reject_leftovers() const;
+// Accepts a finite number in [min, max] (CLI::Range lets NaN through, and prints 1e9 as
+// 1000000000.000000).
+CLI::Validator finite_in(double min, double max);
+// Accepts a whole number in [min, max] (for each item of a comma-separated list too).
+CLI::Validator whole_in(long min, long max);
 
- private:
-  std::vector<std::string> words_;
-  std::vector<bool> used_;
-  int find(const std::string& flag) const;
-  std::string value_of(const std::string& flag);
-};
-
-// "best", "scalar", "sse" or "avx2" (take_choice has checked it).
+// The SIMD width names the options accept.
+const std::vector<std::string>& simd_names();
+// "best", "scalar", "sse" or "avx2" (the option's check has accepted it).
 SimdWidth parse_simd(const std::string& name);
 
 }  // namespace softstep::tool

@@ -3,20 +3,13 @@
 #include <algorithm>
 #include <numbers>
 
+#include <CLI/CLI.hpp>
+
 #include "softstep/metrics.hpp"
+#include "tool/arguments.hpp"
 #include "tool/report_files.hpp"
 
 namespace softstep::tool {
-
-const char* const kJointSceneUsage =
-    "  hinge-chain [--links N] [--chains M] [--limit DEG] [--motor-torque NM [--motor-speed W]]\n"
-    "      N box links (1 kg, 0.25 x 0.05 x 0.05 m) on revolute joints about z, laid out along\n"
-    "      x and swinging down; --limit: every hinge within +-DEG; --motor-torque: a motor of\n"
-    "      at most NM N m driving at W rad/s (default 0: joint friction); --hertz: torsion\n"
-    "      springs towards straight.\n"
-    "  prismatic-stack [--columns N] [--height H]   (default 1000 columns of 10)\n"
-    "      H 1 kg cubes per column, each on a vertical slider to the one below, on springs of\n"
-    "      4 Hz (or --hertz) within -0.2 .. +0.1 m of their 0.5 m spacing.";
 
 namespace {
 
@@ -40,32 +33,43 @@ bool is_joint_scene(const std::string& scene) {
   return scene == "hinge-chain" || scene == "prismatic-stack";
 }
 
-void take_joint_scene_options(Arguments& args, SceneChoice& c) {
-  for (const char* flag : {"--limit", "--motor-torque", "--motor-speed"}) {
-    if (c.scene != "hinge-chain" && args.has(flag))
-      throw UsageError(std::string(flag) + " is a hinge-chain option");
-  }
-  for (const char* flag : {"--columns", "--height"}) {
-    if (c.scene != "prismatic-stack" && args.has(flag))
-      throw UsageError(std::string(flag) + " is a prismatic-stack option");
-  }
+void add_joint_scene_options(CLI::App& cmd, SceneChoice& c) {
+  cmd.add_option("--limit", c.hinge_limit_deg, "hinge-chain: every hinge within +-DEG, degrees")
+      ->check(finite_in(0.0, 1e6));
+  cmd.add_option("--motor-torque", c.hinge.motor.max_torque,
+                 "hinge-chain: a motor of at most NM N m on every hinge")
+      ->check(finite_in(0.0, 1e9));
+  cmd.add_option("--motor-speed", c.hinge.motor.speed,
+                 "hinge-chain: the motor's speed, rad/s (default 0: joint friction)")
+      ->check(finite_in(-1e3, 1e3));
+  c.stack.columns = 1000;
+  c.stack.height = 10;
+  cmd.add_option("--columns", c.stack.columns, "prismatic-stack: columns")
+      ->check(whole_in(1, 10000000))
+      ->capture_default_str();
+  cmd.add_option("--height", c.stack.height, "prismatic-stack: cubes per column")
+      ->check(whole_in(1, 10000000))
+      ->capture_default_str();
+}
+
+void finish_joint_scene_options(const CLI::App& cmd, SceneChoice& c) {
+  const auto only_for = [&](const char* flag, const char* owner) {
+    if (c.scene != owner && cmd.count(flag) > 0)
+      throw CLI::ValidationError(flag, std::string("a ") + owner + " option, not for scene " + c.scene);
+  };
+  for (const char* flag : {"--limit", "--motor-torque", "--motor-speed"}) only_for(flag, "hinge-chain");
+  for (const char* flag : {"--columns", "--height"}) only_for(flag, "prismatic-stack");
   c.hinge.links = c.chain.links;
   c.hinge.chains = c.chain.chains;
-  if (args.has("--limit")) {
-    const double rad = args.take_double("--limit", 0.0, 0.0, 1e6) * std::numbers::pi / 180.0;
+  if (cmd.count("--limit") > 0) {
+    const double rad = c.hinge_limit_deg * std::numbers::pi / 180.0;
     c.hinge.limit = {true, -rad, rad};
   }
-  if (args.has("--motor-torque")) {
-    c.hinge.motor.enabled = true;
-    c.hinge.motor.max_torque = args.take_double("--motor-torque", 0.0, 0.0, 1e9);
-  }
-  c.hinge.motor.speed = args.take_double("--motor-speed", 0.0, -1e3, 1e3);
+  c.hinge.motor.enabled = cmd.count("--motor-torque") > 0;
   if (!c.chain.spring.is_rigid()) {
     c.hinge.spring.spring = c.chain.spring;
     c.stack.spring.spring = c.chain.spring;
   }
-  c.stack.columns = static_cast<int>(args.take_int("--columns", 1000, 1, 10000000));
-  c.stack.height = static_cast<int>(args.take_int("--height", 10, 1, 10000000));
 }
 
 SceneRun build_joint_scene(World& world, const SceneChoice& c) {

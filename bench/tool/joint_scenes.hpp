@@ -7,15 +7,21 @@
 
 #include "tool/scene_options.hpp"
 
-namespace softstep::tool {
+namespace CLI {
+class App;
+}
 
-extern const char* const kJointSceneUsage;
+namespace softstep::tool {
 
 bool is_joint_scene(const std::string& scene);
 
-// Takes the joint scenes' own flags (rejecting them for other scenes) and fills
-// choice.hinge / choice.stack; reads the chain's --links / --chains and the spring.
-void take_joint_scene_options(Arguments& args, SceneChoice& choice);
+// Declares the joint scenes' own options (--limit, --motor-torque, --motor-speed, --columns,
+// --height) on `command`, parsed into `choice`.
+void add_joint_scene_options(CLI::App& command, SceneChoice& choice);
+// Once the command line is parsed: rejects those options for other scenes (a
+// CLI::ValidationError naming the option), fills choice.hinge / choice.stack from them and
+// from the chain's --links / --chains and the spring.
+void finish_joint_scene_options(const CLI::App& command, SceneChoice& choice);
 
 SceneRun build_joint_scene(World& world, const SceneChoice& choice);
 

@@ -5,27 +5,14 @@
 #include <cstdio>
 #include <numeric>
 
+#include "tool/report_files.hpp"
+
 namespace softstep::tool {
 
 namespace {
 
 constexpr double kWidth = 900, kHeight = 620;
 constexpr double kLeft = 100, kRight = 40, kTop = 70, kBottom = 80;
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else
-      out += c;
-  }
-  return out;
-}
 
 std::string num(double v) {
   char b[32];
@@ -83,7 +70,7 @@ std::string pareto_svg(const std::vector<CostPoint>& points, const std::vector<b
                   "\" font-family=\"sans-serif\" font-size=\"13\">\n";
   s += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   s += "<text x=\"" + num(kWidth / 2) + "\" y=\"28\" text-anchor=\"middle\" font-size=\"16\">" +
-       escape(text.title) + "</text>\n";
+       markup_text(text.title) + "</text>\n";
   // Decade grid and tick labels.
   for (int k = xa.first; k <= xa.last; ++k) {
     const double x = px(std::pow(10.0, k));
@@ -102,9 +89,9 @@ std::string pareto_svg(const std::vector<CostPoint>& points, const std::vector<b
   s += "<rect x=\"" + num(kLeft) + "\" y=\"" + num(kTop) + "\" width=\"" + num(pw) +
        "\" height=\"" + num(ph) + "\" fill=\"none\" stroke=\"black\"/>\n";
   s += "<text x=\"" + num(kLeft + pw / 2) + "\" y=\"" + num(kHeight - 30) +
-       "\" text-anchor=\"middle\">" + escape(text.x_axis) + "</text>\n";
+       "\" text-anchor=\"middle\">" + markup_text(text.x_axis) + "</text>\n";
   s += "<text transform=\"translate(24 " + num(kTop + ph / 2) +
-       ") rotate(-90)\" text-anchor=\"middle\">" + escape(text.y_axis) + "</text>\n";
+       ") rotate(-90)\" text-anchor=\"middle\">" + markup_text(text.y_axis) + "</text>\n";
   // Every setting, then the front as a line through its points, fastest first.
   for (std::size_t i : shown) {
     s += "<circle cx=\"" + num(px(points[i].ms)) + "\" cy=\"" + num(py(points[i].error)) +
@@ -128,7 +115,7 @@ std::string pareto_svg(const std::vector<CostPoint>& points, const std::vector<b
       const bool above = k % 2 == 0;
       s += "<text x=\"" + num(px(points[i].ms) + (above ? 7 : -7)) + "\" y=\"" +
            num(py(points[i].error) + (above ? -7 : 16)) + "\" text-anchor=\"" +
-           (above ? "start" : "end") + "\" font-size=\"11\" fill=\"#d62728\">" + escape(labels[i]) +
+           (above ? "start" : "end") + "\" font-size=\"11\" fill=\"#d62728\">" + markup_text(labels[i]) +
            "</text>\n";
     }
   }

@@ -1,40 +1,26 @@
 #include "tool/profile_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "softstep/scene_file.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
-#include "tool/joint_scenes.hpp"
 #include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
-const std::string kProfileUsage =
-    std::string(
-        "usage: softstep profile [chain|grid|bridge|hinge-chain|prismatic-stack] [scene options]\n"
-        "                        [--steps S] [--substeps N] [--iterations N] [--relax N] [--threads T]\n"
-        "                        [--threads-fixed] [--simd scalar|sse|avx2]\n"
-        "                        [--no-warm-start] [--no-sleep] [--general] [--plan]\n"
-        "                        [--json FILE] [--csv FILE] [--trace FILE]\n") +
-    kSceneUsage + "\n" + kJointSceneUsage +
-    "\n  Stepped S times at 60 Hz (default 300).\n"
-    "  --plan        print the step plan of the last step: effects, stages, kernel variants;\n"
-    "  --threads T   at most T threads (0: all cores); each step runs on one or T, whichever ran\n"
-    "                recent steps faster, and on one below 4,096 bodies and joints;\n"
-    "  --threads-fixed  every step on exactly T threads (no adaptive choice);\n"
-    "  --general     every joint on the general kernel and every stage run (the baseline);\n"
-    "  --no-sleep    islands at rest stay awake;\n"
-    "  --json FILE   the figures as one JSON object (with the plan); --csv FILE   one row per "
-    "step;\n"
-    "  --trace FILE  Chrome / Perfetto trace events: one slice per stage per thread.";
-
 namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // "rigid", "soft + min + max", "any (general)", "point + hinge lock + limits", ...
 std::string kernel_features(const PlanKernel& k) {
@@ -77,37 +63,31 @@ void print_plan(const StepPlan& plan) {
   }
 }
 
-JsonObject plan_json(const StepPlan& plan) {
-  JsonObject j;
-  j.add("specialized", plan.specialized ? 1 : 0);
-  std::vector<std::string> stages;
-  for (PlanStage st : plan.stages) stages.emplace_back(plan_stage_name(st));
-  j.add_strings("stages", stages);
-  JsonObject effects;
-  effects.add("gravity", plan.gravity);
-  effects.add("damping", plan.damping);
-  effects.add("forces", plan.forces);
-  effects.add("springs", plan.springs);
-  effects.add("limits", plan.limits);
-  effects.add("warm_start", plan.warm_start);
-  effects.add("kinematic_bodies", plan.kinematic_bodies);
-  effects.add("unconstrained_bodies", plan.unconstrained_bodies);
-  j.add_object("effects", effects);
-  std::vector<JsonObject> kernels;
+nlohmann::json plan_json(const StepPlan& plan) {
+  nlohmann::json j;
+  j["specialized"] = plan.specialized ? 1 : 0;
+  j["stages"] = nlohmann::json::array();
+  for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
+  j["effects"] = {{"gravity", plan.gravity},
+                  {"damping", plan.damping},
+                  {"forces", plan.forces},
+                  {"springs", plan.springs},
+                  {"limits", plan.limits},
+                  {"warm_start", plan.warm_start},
+                  {"kinematic_bodies", plan.kinematic_bodies},
+                  {"unconstrained_bodies", plan.unconstrained_bodies}};
+  j["kernels"] = nlohmann::json::array();
   for (const PlanKernel& k : plan.kernels) {
-    JsonObject o;
-    o.add_string("type", joint_type_name(k.type));
-    o.add_string("spring_row", spring_row_name(k.row));
-    o.add("lower_limit", k.lower_limit);
-    o.add("upper_limit", k.upper_limit);
-    o.add_string("parts", k.parts);
-    o.add("rows_per_joint", k.rows_per_joint);
-    o.add("batches", k.batches);
-    o.add("joints", k.joints);
-    kernels.push_back(o);
+    j["kernels"].push_back({{"type", joint_type_name(k.type)},
+                            {"spring_row", spring_row_name(k.row)},
+                            {"lower_limit", k.lower_limit},
+                            {"upper_limit", k.upper_limit},
+                            {"parts", k.parts},
+                            {"rows_per_joint", k.rows_per_joint},
+                            {"batches", k.batches},
+                            {"joints", k.joints}});
   }
-  j.add_objects("kernels", kernels);
-  j.add("rows_per_pass", static_cast<double>(plan.rows_per_pass));
+  j["rows_per_pass"] = plan.rows_per_pass;
   return j;
 }
 
@@ -118,32 +98,86 @@ struct CsvRow {
 
 }  // namespace
 
-int profile_command(Arguments& args) {
-  const SceneChoice choice = take_scene_options(args);
-  const long steps = args.take_int("--steps", 300, 1, 100000000);
-  WorldSettings settings;
-  settings.substeps = static_cast<int>(args.take_int("--substeps", 4, 1, 1000));
-  settings.solve_iterations = static_cast<int>(args.take_int("--iterations", 1, 1, 1000));
-  settings.relax_iterations = static_cast<int>(args.take_int("--relax", 1, 0, 1000));
-  settings.threads = static_cast<int>(args.take_int("--threads", 0, 0, 256));  // 0: all cores
-  settings.fixed_threads = args.take_switch("--threads-fixed");
-  settings.simd = parse_simd(args.take_choice("--simd", {"best", "scalar", "sse", "avx2"}, "best"));
-  settings.warm_start = !args.take_switch("--no-warm-start");
-  settings.sleeping = !args.take_switch("--no-sleep");
-  settings.specialize = !args.take_switch("--general");
-  const bool show_plan = args.take_switch("--plan");
-  const std::string json_path = args.take_string("--json", "");
-  const std::string csv_path = args.take_string("--csv", "");
-  const std::string trace_path = args.take_string("--trace", "");
-  args.reject_leftovers();
+CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
+  CLI::App* cmd = app.add_subcommand("profile", "run a scene and report where its step time goes");
+  add_scene_options(*cmd, o.scene);
+  cmd->add_option("--steps", o.steps, "steps of 1/60 s")
+      ->check(whole_in(1, 100000000))
+      ->capture_default_str();
+  cmd->add_option("--substeps", o.settings.substeps, "sub-steps per step")
+      ->check(whole_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--iterations", o.settings.solve_iterations, "solve passes per sub-step")
+      ->check(whole_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--relax", o.settings.relax_iterations, "relax passes per sub-step")
+      ->check(whole_in(0, 1000))
+      ->capture_default_str();
+  cmd->add_option("--threads", o.settings.threads, "threads (0: all cores)")
+      ->check(whole_in(0, 256))
+      ->capture_default_str();
+  cmd->add_flag("--threads-fixed", o.threads_fixed,
+                "every step on exactly --threads threads (no adaptive choice)");
+  cmd->add_option("--simd", o.simd, "SIMD width")
+      ->check(CLI::IsMember(simd_names()))
+      ->capture_default_str();
+  cmd->add_flag("--no-warm-start", o.no_warm_start, "start every sub-step's impulses at zero");
+  cmd->add_flag("--no-sleep", o.no_sleep, "islands at rest stay awake");
+  cmd->add_flag("--general", o.general,
+                "every joint on the general kernel and every stage run (the baseline)");
+  cmd->add_flag("--plan", o.show_plan,
+                "print the step plan of the last step: effects, stages, kernel variants");
+  cmd->add_option("--json", o.json_path, "write the figures as one JSON object (with the plan)")
+      ->type_name("FILE");
+  cmd->add_option("--csv", o.csv_path, "write one row per step")->type_name("FILE");
+  cmd->add_option("--save", o.save_path,
+                  "write the scene as built (before the first step) as a scene file")
+      ->type_name("FILE");
+  cmd->add_option("--record", o.record_path,
+                  "record the run (softstep replay FILE checks it step by step)")
+      ->type_name("FILE");
+  cmd->add_option("--trace", o.trace_path,
+                  "write Chrome / Perfetto trace events: one slice per stage per thread")
+      ->type_name("FILE");
+  o.command = cmd;
+  return cmd;
+}
+
+int profile_command(ProfileOptions o) {
+  const SceneChoice& choice = o.scene;
+  const long steps = o.steps;
+  // A scene file's settings, overridden by the solver options given (built-in scenes start
+  // from the defaults, which the options' defaults equal).
+  WorldSettings settings = scene_settings(choice);
+  const auto given = [&](const char* option) {
+    return o.command == nullptr || o.command->count(option) > 0;
+  };
+  if (given("--substeps")) settings.substeps = o.settings.substeps;
+  if (given("--iterations")) settings.solve_iterations = o.settings.solve_iterations;
+  if (given("--relax")) settings.relax_iterations = o.settings.relax_iterations;
+  if (given("--threads")) settings.threads = o.settings.threads;
+  if (o.threads_fixed) settings.fixed_threads = true;
+  if (given("--simd")) settings.simd = parse_simd(o.simd);
+  if (o.no_warm_start) settings.warm_start = false;
+  if (o.no_sleep) settings.sleeping = false;
+  if (o.general) settings.specialize = false;
+  const bool show_plan = o.show_plan;
+  const std::string& json_path = o.json_path;
+  const std::string& csv_path = o.csv_path;
+  const std::string& trace_path = o.trace_path;
+  // Every output path is checked before the run (a long run must not end in a write error).
   check_writable_file("--json", json_path);
   check_writable_file("--csv", csv_path);
   check_writable_file("--trace", trace_path);
+  check_writable_file("--save", o.save_path);
+  check_writable_file("--record", o.record_path);
   std::vector<CsvRow> csv_rows;
 
   World world(settings);
-  world.set_profiling(true);
   const SceneRun run = build_scene(world, choice);
+  world.set_profiling(true);
+  if (!o.save_path.empty()) save_scene(world, o.save_path);
+  if (!o.record_path.empty()) world.start_recording(o.record_path);
 
   const double dt = 1.0 / 60.0;
   std::vector<double> step_ms;
@@ -175,6 +209,7 @@ int profile_command(Arguments& args) {
       bar.update(i + 1);
     }
   }
+  world.stop_recording();
   const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
   const SolverLayout layout = world.solver_layout();
   const double ms = median(step_ms);
@@ -190,7 +225,7 @@ int profile_command(Arguments& args) {
     for (const auto& s : stage_ms) v.push_back(s[static_cast<std::size_t>(k)]);
     stage_median[static_cast<std::size_t>(k)] = median(v);
   }
-  const double stretch = run.stretch_ratio();
+  const double stretch = run.stretch_ratio ? run.stretch_ratio() : kNaN;
 
   std::printf("scene            %s\n", run.description.c_str());
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
@@ -225,45 +260,46 @@ int profile_command(Arguments& args) {
   std::printf(
       "joint error      max %.6g m, rms %.6g m after the last step; worst over the run %.6g m\n",
       errors.max, errors.rms, worst_error_run);
-  std::printf(
-      "stretch ratio    %.6g (path length through the bodies / rest length, worst chain or "
-      "column)\n",
-      stretch);
+  if (run.stretch_ratio) {
+    std::printf(
+        "stretch ratio    %.6g (path length through the bodies / rest length, worst chain or "
+        "column)\n",
+        stretch);
+  }
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {
-    JsonObject j;
-    j.add_string("scene", choice.scene);
-    j.add_string("description", run.description);
-    j.add("bodies", static_cast<double>(world.body_count()));
-    j.add("joints", static_cast<double>(world.joint_count()));
-    j.add("steps", static_cast<double>(steps));
-    j.add("substeps", settings.substeps);
-    j.add("solve_iterations", settings.solve_iterations);
-    j.add("relax_iterations", settings.relax_iterations);
-    j.add("threads", world.last_step_profile().threads);
-    j.add_string("simd", simd_width_name(layout.simd));
-    j.add("ms_per_step", ms);
-    JsonObject stages;
+    nlohmann::json stages;
     for (int k = 0; k < kStageCount; ++k)
-      stages.add(stage_name(static_cast<Stage>(k)), stage_median[static_cast<std::size_t>(k)]);
-    j.add_object("stage_ms", stages);
-    j.add("rows_per_second", row_solves / (ms * 1e-3));
-    j.add("barrier_wait_share", median(wait_share));
-    j.add("colors", layout.colors_used);
-    j.add("overflow_joints", static_cast<double>(layout.overflow_joints));
-    j.add("max_joint_error_m", errors.max);
-    j.add("rms_joint_error_m", errors.rms);
-    j.add("max_joint_error_run_m", worst_error_run);
-    j.add("stretch_ratio", stretch);
-    j.add_object("plan", plan_json(world.step_plan()));
-    j.add("awake_bodies", static_cast<double>(world.step_plan().awake_bodies));
-    j.add("sleeping_islands", static_cast<double>(world.step_plan().sleeping_islands));
+      stages[stage_name(static_cast<Stage>(k))] = stage_median[static_cast<std::size_t>(k)];
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx",
                   static_cast<unsigned long long>(world.state_hash()));
-    j.add_string("state_hash", hash);
-    write_file(json_path, j.text() + "\n");
+    const nlohmann::json j = {{"scene", choice.scene},
+                              {"description", run.description},
+                              {"bodies", world.body_count()},
+                              {"joints", world.joint_count()},
+                              {"steps", steps},
+                              {"substeps", settings.substeps},
+                              {"solve_iterations", settings.solve_iterations},
+                              {"relax_iterations", settings.relax_iterations},
+                              {"threads", world.last_step_profile().threads},
+                              {"simd", simd_width_name(layout.simd)},
+                              {"ms_per_step", ms},
+                              {"stage_ms", stages},
+                              {"rows_per_second", row_solves / (ms * 1e-3)},
+                              {"barrier_wait_share", median(wait_share)},
+                              {"colors", layout.colors_used},
+                              {"overflow_joints", layout.overflow_joints},
+                              {"max_joint_error_m", errors.max},
+                              {"rms_joint_error_m", errors.rms},
+                              {"max_joint_error_run_m", worst_error_run},
+                              {"stretch_ratio", stretch},
+                              {"plan", plan_json(world.step_plan())},
+                              {"awake_bodies", world.step_plan().awake_bodies},
+                              {"sleeping_islands", world.step_plan().sleeping_islands},
+                              {"state_hash", hash}};
+    write_file(json_path, j.dump(2) + "\n");
   }
   if (!csv_path.empty()) {
     std::string csv = "step,ms";

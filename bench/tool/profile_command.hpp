@@ -2,12 +2,26 @@
 
 #include <string>
 
-#include "tool/arguments.hpp"
+#include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
+struct ProfileOptions {
+  SceneChoice scene;
+  long steps = 300;
+  WorldSettings settings;
+  std::string simd = "best";
+  bool threads_fixed = false;
+  bool no_warm_start = false, no_sleep = false, general = false, show_plan = false;
+  std::string json_path, csv_path, trace_path, save_path, record_path;
+  // The parsed command: which solver options were given (a scene file's settings hold
+  // otherwise).
+  const CLI::App* command = nullptr;
+};
+
+// Declares `softstep profile` and its options on the tool's app.
+CLI::App* add_profile_command(CLI::App& app, ProfileOptions& options);
 // softstep profile [chain] --links N --chains M ... : runs a scene and reports its cost.
-int profile_command(Arguments& args);
-extern const std::string kProfileUsage;
+int profile_command(ProfileOptions options);
 
 }  // namespace softstep::tool

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "tool/arguments.hpp"
@@ -18,62 +19,40 @@ std::string format_number(double value) {
   return b;
 }
 
-namespace {
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-}  // namespace
-
-void JsonObject::add(const std::string& key, double value) {
-  members_.push_back(quoted(key) + ": " + format_number(value));
-}
-
-void JsonObject::add_string(const std::string& key, const std::string& value) {
-  members_.push_back(quoted(key) + ": " + quoted(value));
-}
-
-void JsonObject::add_object(const std::string& key, const JsonObject& value) {
-  members_.push_back(quoted(key) + ": " + value.text());
-}
-
-void JsonObject::add_strings(const std::string& key, const std::vector<std::string>& values) {
-  std::string list;
-  for (const std::string& v : values) list += (list.empty() ? "" : ", ") + quoted(v);
-  members_.push_back(quoted(key) + ": [" + list + "]");
-}
-
-void JsonObject::add_objects(const std::string& key, const std::vector<JsonObject>& values) {
-  std::string list;
-  for (const JsonObject& v : values) list += (list.empty() ? "" : ", ") + v.text();
-  members_.push_back(quoted(key) + ": [" + list + "]");
-}
-
-std::string JsonObject::text() const {
-  std::string out = "{";
-  for (std::size_t i = 0; i < members_.size(); ++i) out += (i ? ", " : "") + members_[i];
-  return out + "}";
-}
-
 void Trace::add_step(double step_start_us, const StepProfile& profile) {
   for (std::size_t t = 0; t < profile.thread_events.size(); ++t) {
-    for (const StageEvent& e : profile.thread_events[t]) {
-      if (!events_.empty()) events_ += ",\n";
-      events_ += "{\"name\": \"" + std::string(stage_name(e.stage)) +
-                 "\", \"cat\": \"step\", \"ph\": \"X\", \"ts\": " +
-                 format_number(step_start_us + e.start_us) +
-                 ", \"dur\": " + format_number(e.end_us - e.start_us) +
-                 ", \"pid\": 1, \"tid\": " + std::to_string(t) + "}";
-    }
+    for (const StageEvent& e : profile.thread_events[t])
+      events_.push_back({e.stage, t, step_start_us + e.start_us, e.end_us - e.start_us});
   }
 }
 
 std::string Trace::text() const {
-  return "{\"traceEvents\": [\n" + events_ + "\n]}\n";
+  nlohmann::json events = nlohmann::json::array();
+  for (const Event& e : events_) {
+    events.push_back({{"name", stage_name(e.stage)},
+                      {"cat", "step"},
+                      {"ph", "X"},
+                      {"ts", e.start_us},
+                      {"dur", e.duration_us},
+                      {"pid", 1},
+                      {"tid", e.thread}});
+  }
+  return nlohmann::json{{"traceEvents", events}}.dump() + "\n";
+}
+
+std::string markup_text(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else
+      out += c;
+  }
+  return out;
 }
 
 void write_file(const std::string& path, const std::string& text) {

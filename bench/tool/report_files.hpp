@@ -1,4 +1,5 @@
-// Writers for the tool's report files: a small JSON object, Chrome trace events, numbers.
+// Writers for the tool's report files: Chrome trace events, numbers, files. JSON objects are
+// built with nlohmann::json where they are filled.
 #pragma once
 
 #include <string>
@@ -11,21 +12,8 @@ namespace softstep::tool {
 // The median (upper median for an even count), 0 for none.
 double median(std::vector<double> values);
 
-// Shortest round-trip form of a number ("%.17g" trimmed), for JSON and CSV.
+// A number with 10 significant digits for CSV, "null" when it is not finite.
 std::string format_number(double value);
-
-class JsonObject {
- public:
-  void add(const std::string& key, double value);
-  void add_string(const std::string& key, const std::string& value);
-  void add_object(const std::string& key, const JsonObject& value);
-  void add_strings(const std::string& key, const std::vector<std::string>& values);
-  void add_objects(const std::string& key, const std::vector<JsonObject>& values);
-  std::string text() const;
-
- private:
-  std::vector<std::string> members_;
-};
 
 // Chrome / Perfetto trace-event JSON: one complete event ("ph": "X") per stage per thread.
 class Trace {
@@ -34,8 +22,16 @@ class Trace {
   std::string text() const;
 
  private:
-  std::string events_;
+  struct Event {
+    Stage stage;
+    std::size_t thread;
+    double start_us, duration_us;
+  };
+  std::vector<Event> events_;
 };
+
+// Text made safe inside HTML or SVG: <, > and & escaped.
+std::string markup_text(const std::string& text);
 
 // Throws std::runtime_error naming the path when the file cannot be written.
 void write_file(const std::string& path, const std::string& text);

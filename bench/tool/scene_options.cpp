@@ -1,77 +1,132 @@
 #include "tool/scene_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "softstep/metrics.hpp"
 #include "tool/joint_scenes.hpp"
+#include "softstep/scene_file.hpp"
 #include "tool/report_files.hpp"
 
 namespace softstep::tool {
 
-const char* const kSceneUsage =
-    "  chain [--links N] [--chains M] [--joint ball|distance] [--end-mass KG]\n"
-    "        [--layout horizontal|hanging]   (default: chain, 10000 links)\n"
-    "      N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally (or\n"
-    "      hanging straight down, unstretched), the first link jointed to the static world;\n"
-    "      M parallel chains 1 m apart. --end-mass: the last link weighs KG instead (a\n"
-    "      mass-ratio chain).\n"
-    "  grid [--size N]   (default 100)\n"
-    "      N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top row\n"
-    "      static, ball joints to the right and lower neighbours.\n"
-    "  bridge [--span N] [--loads K] [--load-mass M]   (default 1000 links, 10 loads of 50 kg)\n"
-    "      a chain of N links pinned at both ends, K heavy bodies hanging from it on 0.5 m rods.\n"
-    "  --hertz F [--zeta Z]   springs of F Hz and damping ratio Z (default 0.7) instead of\n"
-    "      rigid joints.";
+const char* const kSceneHelp =
+    "Scenes (default chain), or the path of a scene file (softstep profile ... --save FILE\n"
+    "writes one; README \"Your own scene\" has the format):\n"
+    "  chain   N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally (or\n"
+    "          hanging straight down, unstretched), the first link jointed to the static world;\n"
+    "          M parallel chains 1 m apart. --end-mass: the last link weighs KG instead (a\n"
+    "          mass-ratio chain).\n"
+    "  grid    N x N spheres of radius 0.4 m, 1000 kg/m^3, 1 m apart in a vertical plane, top\n"
+    "          row static, ball joints to the right and lower neighbours.\n"
+    "  bridge  a chain of N links pinned at both ends, K heavy bodies hanging from it on 0.5 m\n"
+    "          rods.\n"
+    "  hinge-chain  N box links (1 kg, 0.25 x 0.05 x 0.05 m) on revolute joints about z, laid\n"
+    "          out along x and swinging down (--links, --chains); --limit: every hinge within\n"
+    "          +-DEG; --motor-torque: a motor of at most NM N m driving at --motor-speed W rad/s\n"
+    "          (default 0: joint friction); --hertz: torsion springs towards straight.\n"
+    "  prismatic-stack  --height H 1 kg cubes per column (default 1000 columns of 10), each on\n"
+    "          a vertical slider to the one below, on springs of 4 Hz (or --hertz) within\n"
+    "          -0.2 .. +0.1 m of their 0.5 m spacing.\n"
+    "Joints are rigid unless --hertz gives them springs.";
 
-SceneChoice take_scene_options(Arguments& args) {
-  SceneChoice c;
-  const std::vector<std::string> positionals = args.take_positionals();
-  c.scene = positionals.empty() ? "chain" : positionals.front();
-  if (positionals.size() > 1 || (c.scene != "chain" && c.scene != "grid" && c.scene != "bridge" &&
-                                  !is_joint_scene(c.scene))) {
-    throw UsageError("unknown scene '" + positionals.back() +
-                     "' (scenes: chain, grid, bridge, hinge-chain, prismatic-stack)");
-  }
-  const auto only_for = [&](const char* flag, const char* owner) {
-    if (c.scene != owner && args.has(flag))
-      throw UsageError(std::string(flag) + " is a " + owner + " option");
-  };
-  for (const char* flag : {"--joint", "--end-mass", "--layout"}) only_for(flag, "chain");
-  if (c.scene != "hinge-chain") {
-    for (const char* flag : {"--links", "--chains"}) only_for(flag, "chain");
-  }
-  only_for("--size", "grid");
-  for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
+void add_scene_options(CLI::App& cmd, SceneChoice& c) {
+  c.chain.links = 10000;
+  cmd.add_option("scene", c.scene, "the scene: chain, grid, bridge, hinge-chain, prismatic-stack or a scene file")
+      ->check(CLI::Validator(
+          [](std::string& name) -> std::string {
+            if (name == "chain" || name == "grid" || name == "bridge" || is_joint_scene(name) ||
+                std::filesystem::is_regular_file(name))
+              return {};
+            return "'" + name +
+                   "' is neither a scene (chain, grid, bridge, hinge-chain, prismatic-stack) nor "
+                   "a scene file";
+          },
+          "chain|grid|bridge|hinge-chain|prismatic-stack|FILE"))
+      ->capture_default_str();
+  cmd.add_option("--links", c.chain.links, "chain, hinge-chain: links per chain")
+      ->check(whole_in(1, 100000000))
+      ->capture_default_str();
+  cmd.add_option("--chains", c.chain.chains, "chain, hinge-chain: parallel chains")
+      ->check(whole_in(1, 1000000))
+      ->capture_default_str();
+  cmd.add_option("--joint", c.joint, "chain: joint type")
+      ->check(CLI::IsMember({"ball", "distance"}))
+      ->capture_default_str();
+  cmd.add_option("--layout", c.layout, "chain: laid out along x, or hanging down")
+      ->check(CLI::IsMember({"horizontal", "hanging"}))
+      ->capture_default_str();
+  cmd.add_option("--end-mass", c.end_mass, "chain: the last link's mass, kg")
+      ->check(finite_in(1e-6, 1e9));
+  cmd.add_option("--size", c.grid.size, "grid: N x N bodies")
+      ->check(whole_in(2, 100000))
+      ->capture_default_str();
+  cmd.add_option("--span", c.bridge.span, "bridge: links of the deck")
+      ->check(whole_in(2, 100000000))
+      ->capture_default_str();
+  cmd.add_option("--loads", c.bridge.loads, "bridge: heavy bodies hanging from the deck")
+      ->check(whole_in(0, 100000000))
+      ->capture_default_str();
+  cmd.add_option("--load-mass", c.bridge.load_mass, "bridge: mass of each load, kg")
+      ->check(finite_in(1e-3, 1e9))
+      ->capture_default_str();
+  cmd.add_option("--hertz", c.hertz, "springs of this frequency, Hz, instead of rigid joints")
+      ->check(finite_in(0.0, 1e9));
+  cmd.add_option("--zeta", c.zeta, "the springs' damping ratio (needs --hertz)")
+      ->check(finite_in(0.0, 1e9))
+      ->capture_default_str();
+  add_joint_scene_options(cmd, c);
 
-  c.chain.links = static_cast<int>(args.take_int("--links", 10000, 1, 100000000));
-  c.chain.chains = static_cast<int>(args.take_int("--chains", 1, 1, 1000000));
-  c.chain.joint = args.take_choice("--joint", {"ball", "distance"}, "ball") == "ball"
-                      ? scenes::ChainJoint::Ball
-                      : scenes::ChainJoint::Distance;
-  c.chain.layout =
-      args.take_choice("--layout", {"horizontal", "hanging"}, "horizontal") == "hanging"
-          ? scenes::ChainLayout::Hanging
-          : scenes::ChainLayout::Horizontal;
-  if (args.has("--end-mass")) {
-    c.chain.link_masses.assign(static_cast<std::size_t>(c.chain.links), c.chain.link_mass);
-    c.chain.link_masses.back() = args.take_double("--end-mass", 1.0, 1e-6, 1e9);
-  }
-  c.grid.size = static_cast<int>(args.take_int("--size", 100, 2, 100000));
-  c.bridge.span = static_cast<int>(args.take_int("--span", 1000, 2, 100000000));
-  c.bridge.loads = static_cast<int>(args.take_int("--loads", 10, 0, c.bridge.span));
-  c.bridge.load_mass = args.take_double("--load-mass", 50.0, 1e-3, 1e9);
-  const bool soft = args.has("--hertz");
-  // Checked before take_double consumes --zeta (has() sees only flags not yet taken).
-  if (!soft && args.has("--zeta"))
-    throw UsageError("--zeta needs --hertz (omit both for rigid joints)");
-  const double hertz = args.take_double("--hertz", 0.0, 0.0, 1e9);
-  const double zeta = args.take_double("--zeta", soft ? 0.7 : 0.0, 0.0, 1e9);
-  c.chain.spring = c.grid.spring = c.bridge.spring =
-      soft ? Spring::soft(hertz, zeta) : Spring::rigid();
-  c.spring_text = soft ? "spring " + format_number(hertz) + " Hz, zeta " + format_number(zeta)
-                       : std::string("rigid");
-  take_joint_scene_options(args, c);
-  return c;
+  cmd.parse_complete_callback([&cmd, &c] {
+    c.from_file =
+        c.scene != "chain" && c.scene != "grid" && c.scene != "bridge" && !is_joint_scene(c.scene);
+    const auto only_for = [&](const char* flag, const char* owner) {
+      if (c.scene != owner && cmd.count(flag) > 0)
+        throw CLI::ValidationError(flag,
+                                   std::string("a ") + owner + " option, not for scene " + c.scene);
+    };
+    for (const char* flag : {"--joint", "--end-mass", "--layout"}) only_for(flag, "chain");
+    if (c.scene != "hinge-chain") {
+      for (const char* flag : {"--links", "--chains"}) only_for(flag, "chain");
+    }
+    only_for("--size", "grid");
+    if (c.from_file) {
+      for (const char* flag : {"--hertz", "--zeta"}) {
+        if (cmd.count(flag) > 0)
+          throw CLI::ValidationError(flag, "not for a scene file (its joints carry their springs)");
+      }
+      // Loaded once here, so that a bad file is reported before anything runs.
+      std::ifstream in(c.scene, std::ios::binary);
+      std::stringstream text;
+      text << in.rdbuf();
+      c.file_text = text.str();
+      c.file_settings = load_scene_text(c.file_text, c.scene).settings();
+    }
+    for (const char* flag : {"--span", "--loads", "--load-mass"}) only_for(flag, "bridge");
+    if (c.bridge.loads > c.bridge.span)
+      throw CLI::ValidationError("--loads", "value " + std::to_string(c.bridge.loads) +
+                                                ": at most --span (" +
+                                                std::to_string(c.bridge.span) + ")");
+    c.chain.joint = c.joint == "ball" ? scenes::ChainJoint::Ball : scenes::ChainJoint::Distance;
+    c.chain.layout =
+        c.layout == "hanging" ? scenes::ChainLayout::Hanging : scenes::ChainLayout::Horizontal;
+    if (cmd.count("--end-mass") > 0) {
+      c.chain.link_masses.assign(static_cast<std::size_t>(c.chain.links), c.chain.link_mass);
+      c.chain.link_masses.back() = c.end_mass;
+    }
+    const bool soft = cmd.count("--hertz") > 0;
+    if (!soft && cmd.count("--zeta") > 0)
+      throw CLI::ValidationError("--zeta", "needs --hertz (omit both for rigid joints)");
+    c.chain.spring = c.grid.spring = c.bridge.spring =
+        soft ? Spring::soft(c.hertz, c.zeta) : Spring::rigid();
+    c.spring_text = soft ? "spring " + format_number(c.hertz) + " Hz, zeta " + format_number(c.zeta)
+                         : std::string("rigid");
+    finish_joint_scene_options(cmd, c);
+  });
+  cmd.footer(kSceneHelp);
 }
 
 std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<BodyId>& bodies) {
@@ -81,8 +136,39 @@ std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<Bod
   return p;
 }
 
+WorldSettings scene_settings(const SceneChoice& c) {
+  return c.from_file ? c.file_settings : WorldSettings{};
+}
+
+namespace {
+
+SceneRun load_file_scene(World& world, const SceneChoice& c) {
+  World loaded = load_scene_text(c.file_text, c.scene);
+  loaded.set_settings(world.settings());
+  world = std::move(loaded);
+  SceneRun run;
+  run.joints = world.joint_ids();
+  Eigen::AlignedBox3d box;
+  for (BodyId b : world.body_ids()) {
+    const BodyState s = world.body(b);
+    box.extend(s.position);
+    if (s.type == BodyType::Dynamic) run.bodies.push_back(b);
+  }
+  std::size_t ball = 0;
+  for (JointId j : run.joints) ball += world.joint_type(j) == JointType::Ball ? 1 : 0;
+  run.rows = static_cast<double>(world.step_plan().rows_per_pass);
+  run.description = "file " + c.scene + ": " + std::to_string(world.body_count()) + " bodies, " +
+                    std::to_string(ball) + " ball and " + std::to_string(run.joints.size() - ball) +
+                    " distance joints";
+  run.reach = box.isEmpty() ? 0.0 : box.diagonal().norm();
+  return run;
+}
+
+}  // namespace
+
 SceneRun build_scene(World& world, const SceneChoice& c) {
   if (is_joint_scene(c.scene)) return build_joint_scene(world, c);
+  if (c.from_file) return load_file_scene(world, c);
   SceneRun run;
   if (c.scene == "chain") {
     const scenes::ChainOptions& chain = c.chain;

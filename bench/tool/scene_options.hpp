@@ -13,23 +13,37 @@
 #include "scenes/prismatic_stack.hpp"
 #include "tool/arguments.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace softstep::tool {
 
-// The usage lines of the scene options.
-extern const char* const kSceneUsage;
+// What the scenes are, for the commands' help.
+extern const char* const kSceneHelp;
 
 struct SceneChoice {
-  std::string scene = "chain";  // chain, grid, bridge, hinge-chain or prismatic-stack
+  std::string scene = "chain";  // chain, grid, bridge, hinge-chain, prismatic-stack, or a scene file
   scenes::ChainOptions chain;
   scenes::GridOptions grid;
   scenes::BridgeOptions bridge;
   scenes::HingeChainOptions hinge;     // tool/joint_scenes.cpp
   scenes::PrismaticStackOptions stack;
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
+  // Parsed straight into; turned into the scenes' springs and masses once parsing is complete.
+  double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
+  double hinge_limit_deg = 0.0;  // hinge-chain --limit, degrees
+  std::string joint = "ball", layout = "horizontal";
+  // A scene file: its text (read once, loaded for every run) and its settings.
+  bool from_file = false;
+  std::string file_text;
+  WorldSettings file_settings;
 };
 
-// Takes the scene (first positional) and its flags, rejecting another scene's flags.
-SceneChoice take_scene_options(Arguments& args);
+// Declares the scene (a positional) and its options on `command`. Once the command line is
+// parsed, an option of another scene, or --zeta without --hertz, is a CLI::ValidationError
+// naming it. `choice` must outlive the parse.
+void add_scene_options(CLI::App& command, SceneChoice& choice);
 
 // A built scene: what the reports need to know about it.
 struct SceneRun {
@@ -38,13 +52,19 @@ struct SceneRun {
   std::vector<JointId> joints;
   double rows = 0.0;  // constraint rows
   // Path length through the bodies over the rest length: the worst chain or grid column, the
-  // bridge's deck.
+  // bridge's deck. Empty for a scene file (the tool does not know its chains).
   std::function<double()> stretch_ratio;
   // How far below its start the lowest body could ever hang, m (the potential-energy datum
-  // of the sweep's energy drift).
+  // of the sweep's energy drift). A scene file: the diagonal of its bodies' bounding box.
   double reach = 0.0;
 };
 
+// The settings a run starts from: the scene file's, or the defaults for a built-in scene. The
+// commands then apply the solver options they were given.
+WorldSettings scene_settings(const SceneChoice& choice);
+
+// Builds the scene into `world` (which holds the run's settings): a scene file's world
+// replaces it, keeping those settings.
 SceneRun build_scene(World& world, const SceneChoice& choice);
 
 // The bodies' centres now, m.

@@ -2,6 +2,7 @@
 // error against the exact references, then writes results.csv, pareto.svg and summary.md.
 #include "tool/sweep_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,34 +18,28 @@
 #include "tool/pareto_chart.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
-#include "tool/joint_scenes.hpp"
 #include "tool/scene_options.hpp"
 
 namespace softstep::tool {
 
-const std::string kSweepUsage =
-    std::string(
-        "usage: softstep sweep [chain|grid|bridge|hinge-chain|prismatic-stack] [scene options] --out DIR [--steps S]\n"
-        "         [--substeps LIST] [--relax LIST] [--iterations LIST] [--warm-start on,off]\n"
-        "         [--simd LIST] [--threads LIST] [--rigid-hertz LIST] [--runs R]\n"
-        "         [--error drift|joint|reference]\n"
-        "         [--reference-substeps N] [--reference-iterations N] [--probes K]\n") +
-    kSceneUsage + "\n" + kJointSceneUsage +
-    "\n  Every combination of the lists (comma-separated; defaults: substeps 1,2,4,8,16, relax\n"
-    "  0,1,2,4, iterations 1, warm start on, simd best, threads 1, rigid hertz 60) runs S\n"
-    "  steps of 1/60 s (default 60) once to measure its errors and R more times (default 3),\n"
-    "  all settings in turn, to time it: ms per step is the median over the R runs of each run's\n"
-    "  median step. The errors:\n"
-    "    joint error     C of every joint after every step (max, and RMS over steps and joints)\n"
-    "    drift           RMS distance of the bodies from the fine-step reference (the same scene\n"
-    "                    at N sub-steps (default 64) and N solve and relax iterations (default\n"
-    "                    4)), the largest over ~20 samples of the run\n"
-    "    reference       at K steps (default 4): distance of the first sub-step's velocities from\n"
-    "                    the exact solution of its soft system (Eigen sparse LDLT), relative, and\n"
-    "                    the RMS row residual J v + bias + Gamma P of the solver's result, m/s\n"
-    "    energy drift    largest |E - E0| / E0, potential energy from the lowest reachable point\n"
-    "  --error picks the error of the chart and of the Pareto front (default drift).\n"
-    "  DIR gets results.csv (one row per setting), pareto.svg and summary.md.";
+namespace {
+
+const char* const kSweepHelp =
+    "Every combination of the lists (comma-separated) runs S steps of 1/60 s once to measure\n"
+    "its errors and R more times, all settings in turn, to time it: ms per step is the median\n"
+    "over the R runs of each run's median step. The errors:\n"
+    "  joint error     C of every joint after every step (max, and RMS over steps and joints)\n"
+    "  drift           RMS distance of the bodies from the fine-step reference (the same scene\n"
+    "                  at --reference-substeps sub-steps and --reference-iterations solve and\n"
+    "                  relax iterations), the largest over ~20 samples of the run\n"
+    "  reference       at --probes steps: distance of the first sub-step's velocities from the\n"
+    "                  exact solution of its soft system (Eigen sparse LDLT), relative, and the\n"
+    "                  RMS row residual J v + bias + Gamma P of the solver's result, m/s\n"
+    "  energy drift    largest |E - E0| / E0, potential energy from the lowest reachable point\n"
+    "--error picks the error of the chart and of the Pareto front.\n"
+    "DIR gets results.csv (one row per setting), pareto.svg and summary.md.\n\n";
+
+}  // namespace
 
 namespace {
 
@@ -93,8 +88,8 @@ double energy_offset(const World& world, const SceneRun& run) {
   return -(lowest - run.reach) * weight;
 }
 
-WorldSettings settings_of(const Setting& s) {
-  WorldSettings w;
+// The scene's settings (a scene file's, or the defaults) with the setting's knobs.
+WorldSettings settings_of(const Setting& s, WorldSettings w) {
   w.substeps = s.substeps;
   w.relax_iterations = s.relax;
   w.solve_iterations = s.iterations;
@@ -118,44 +113,89 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
 
 }  // namespace
 
-int sweep_command(Arguments& args) {
-  const SceneChoice choice = take_scene_options(args);
-  const std::string out = args.take_string("--out", "");
-  if (out.empty()) throw UsageError("--out DIR is required");
-  const long steps = args.take_int("--steps", 60, 2, 1000000);
-  const std::vector<long> substeps = args.take_int_list("--substeps", "1,2,4,8,16", 1, 1000);
-  const std::vector<long> relax = args.take_int_list("--relax", "0,1,2,4", 0, 1000);
-  const std::vector<long> iterations = args.take_int_list("--iterations", "1", 1, 1000);
-  const std::string warm_text = args.take_string("--warm-start", "on");
-  const std::string simd_text = args.take_string("--simd", "best");
-  const std::vector<long> threads = args.take_int_list("--threads", "1", 0, 256);
-  const std::vector<long> rigid_hertz = args.take_int_list("--rigid-hertz", "60", 1, 1000000);
-  const long runs = args.take_int("--runs", 3, 1, 1000);
-  const std::string error_name =
-      args.take_choice("--error", {"drift", "joint", "reference"}, "drift");
-  const int reference_substeps =
-      static_cast<int>(args.take_int("--reference-substeps", 64, 1, 10000));
-  const int reference_iterations =
-      static_cast<int>(args.take_int("--reference-iterations", 4, 1, 1000));
-  const long probes = args.take_int("--probes", 4, 0, steps);
-  args.reject_leftovers();
+CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "what accuracy costs in time: a scene over a grid of settings, with its Pareto front");
+  add_scene_options(*cmd, o.scene);
+  cmd->add_option("--out", o.out, "the folder the results go to")->required()->type_name("DIR");
+  cmd->add_option("--steps", o.steps, "steps of 1/60 s per run")
+      ->check(whole_in(2, 1000000))
+      ->capture_default_str();
+  const auto list = [&](const char* name, std::vector<long>& into, long min, long max,
+                        const char* what) {
+    cmd->add_option(name, into, what)
+        ->delimiter(',')
+        ->check(whole_in(min, max))
+        ->type_name("LIST")
+        ->capture_default_str();
+  };
+  list("--substeps", o.substeps, 1, 1000, "sub-steps per step");
+  list("--relax", o.relax, 0, 1000, "relax passes per sub-step");
+  list("--iterations", o.iterations, 1, 1000, "solve passes per sub-step");
+  cmd->add_option("--warm-start", o.warm_start, "warm starting: on, off or on,off")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"on", "off"}))
+      ->type_name("LIST")
+      ->capture_default_str();
+  cmd->add_option("--simd", o.simd, "SIMD widths: best, scalar, sse, avx2")
+      ->delimiter(',')
+      ->check(CLI::IsMember(simd_names()))
+      ->type_name("LIST")
+      ->capture_default_str();
+  list("--threads", o.threads, 0, 256, "threads (0: all cores)");
+  list("--rigid-hertz", o.rigid_hertz, 1, 1000000, "the stiffness rigid rows are solved with, Hz");
+  cmd->add_option("--runs", o.runs, "timed runs per setting")
+      ->check(whole_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--error", o.error, "the error of the chart and the front")
+      ->check(CLI::IsMember({"drift", "joint", "reference"}))
+      ->capture_default_str();
+  cmd->add_option("--reference-substeps", o.reference_substeps,
+                  "sub-steps of the fine-step reference")
+      ->check(whole_in(1, 10000))
+      ->capture_default_str();
+  cmd->add_option("--reference-iterations", o.reference_iterations,
+                  "solve and relax iterations of the fine-step reference")
+      ->check(whole_in(1, 1000))
+      ->capture_default_str();
+  cmd->add_option("--probes", o.probes, "steps checked against the exact sub-step solve")
+      ->check(whole_in(0, 1000000))
+      ->capture_default_str();
+  cmd->footer(std::string(kSweepHelp) + kSceneHelp);
+  return cmd;
+}
+
+int sweep_command(const SweepOptions& o) {
+  const SceneChoice& choice = o.scene;
+  const std::string& out = o.out;
+  const long steps = o.steps;
+  const std::vector<long>& substeps = o.substeps;
+  const std::vector<long>& relax = o.relax;
+  const std::vector<long>& iterations = o.iterations;
+  const std::vector<long>& threads = o.threads;
+  const std::vector<long>& rigid_hertz = o.rigid_hertz;
+  const long runs = o.runs;
+  const std::string& error_name = o.error;
+  const int reference_substeps = o.reference_substeps;
+  const int reference_iterations = o.reference_iterations;
+  if (o.probes > steps)
+    throw UsageError("--probes " + std::to_string(o.probes) + ": at most --steps (" +
+                     std::to_string(steps) + ")");
+  const long probes = o.probes;
+  // Checked before the runs: a long sweep must not end in a write error.
   check_writable_directory("--out", out);
 
   std::vector<bool> warm_choices;
-  for (const std::string& w : {std::string("on"), std::string("off")}) {
-    if (("," + warm_text + ",").find("," + w + ",") != std::string::npos)
-      warm_choices.push_back(w == "on");
+  for (const char* w : {"on", "off"}) {
+    if (std::find(o.warm_start.begin(), o.warm_start.end(), w) != o.warm_start.end())
+      warm_choices.push_back(std::string(w) == "on");
   }
-  if (warm_choices.empty())
-    throw UsageError("--warm-start " + warm_text + ": expected on, off or on,off");
   std::vector<SimdWidth> simd_choices;
-  for (const char* name : {"best", "scalar", "sse", "avx2"}) {
-    if (("," + simd_text + ",").find("," + std::string(name) + ",") != std::string::npos)
+  for (const std::string& name : simd_names()) {
+    if (std::find(o.simd.begin(), o.simd.end(), name) != o.simd.end())
       simd_choices.push_back(parse_simd(name));
   }
-  if (simd_choices.empty())
-    throw UsageError("--simd " + simd_text + ": expected best, scalar, sse or avx2");
-
   std::vector<Setting> grid;
   for (long s : substeps)
     for (long r : relax)
@@ -191,7 +231,7 @@ int sweep_command(Arguments& args) {
   std::vector<std::vector<Eigen::Vector3d>> reference_positions(
       static_cast<std::size_t>(steps + 1));
   {
-    WorldSettings fine;
+    WorldSettings fine = scene_settings(choice);
     fine.substeps = reference_substeps;
     fine.solve_iterations = reference_iterations;
     fine.relax_iterations = reference_iterations;
@@ -221,7 +261,7 @@ int sweep_command(Arguments& args) {
         const Setting& setting = grid[g];
         Measured& m = results[g];
         const bool measuring = r == 0;
-        World world(settings_of(setting));
+        World world(settings_of(setting, scene_settings(choice)));
         const SceneRun run = build_scene(world, choice);
         description = run.description;
         body_count = world.body_count();
@@ -251,7 +291,7 @@ int sweep_command(Arguments& args) {
             m.drift = worst(
                 m.drift, metrics::position_drift(world, run.bodies,
                                                  reference_positions[static_cast<std::size_t>(i)]));
-            m.stretch = worst(m.stretch, run.stretch_ratio());
+            if (run.stretch_ratio) m.stretch = worst(m.stretch, run.stretch_ratio());
           }
           if (probe) {
             try {

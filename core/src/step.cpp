@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "recording/recorder.hpp"
 #include "solver/team.hpp"
 #include "validation.hpp"
 #include "world_impl.hpp"
@@ -393,6 +394,7 @@ void World::step(double dt) {
   w.joints_without_history = false;
   w.clear_forces();
   w.update_sleep(dt);
+  if (w.recorder) w.recorder->step(dt, motion_hash());
 }
 
 void World::set_task_callbacks(const TaskCallbacks& callbacks) {

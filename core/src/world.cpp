@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
+#include "recording/recorder.hpp"
 #include "validation.hpp"
 #include "world_impl.hpp"
 
@@ -134,6 +136,7 @@ void World::set_settings(const WorldSettings& settings) {
   w.settings = settings;
   if (!settings.sleeping) w.wake_all();
   w.content_changed();
+  if (w.recorder) w.recorder->set_settings(settings);
 }
 
 void World::reserve(std::size_t bodies, std::size_t joints) {
@@ -178,6 +181,7 @@ BodyId World::create_body(const BodyDef& def) {
   b.sleep_time = 0.0;
   ++w.body_count;
   w.content_changed();
+  if (w.recorder) w.recorder->create_body(def, {slot, b.generation});
   return {slot, b.generation};
 }
 
@@ -194,6 +198,7 @@ void World::destroy_body(BodyId id) {
   w.free_bodies.push_back(slot);
   --w.body_count;
   w.content_changed();
+  if (w.recorder) w.recorder->destroy_body(id);
 }
 
 bool World::is_valid(BodyId id) const {
@@ -205,7 +210,8 @@ bool World::is_valid(BodyId id) const {
 BodyState World::body(BodyId id) const {
   const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
   return {b.type, b.position, b.orientation,   b.linear_velocity, b.angular_velocity,
-          b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping};
+          b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping,
+          b.never_sleep};
 }
 
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {
@@ -213,6 +219,7 @@ void World::set_position(BodyId id, const Eigen::Vector3d& position) {
   validation::finite("set_position", "position", position);
   impl_->touch(slot);
   impl_->bodies[slot].position = position;
+  if (impl_->recorder) impl_->recorder->set_vector(recording::Tag::SetPosition, id, position);
 }
 
 void World::set_orientation(BodyId id, const Quaternion& orientation) {
@@ -220,6 +227,7 @@ void World::set_orientation(BodyId id, const Quaternion& orientation) {
   const Quaternion q = validation::unit_quaternion("set_orientation", "orientation", orientation);
   impl_->touch(slot);
   impl_->bodies[slot].orientation = q;
+  if (impl_->recorder) impl_->recorder->set_orientation(id, orientation);
 }
 
 namespace {
@@ -241,10 +249,13 @@ void set_velocity(World::Impl& w, std::string_view call, BodyId id, const Eigen:
 
 void World::set_linear_velocity(BodyId id, const Eigen::Vector3d& velocity) {
   set_velocity(*impl_, "set_linear_velocity", id, velocity, &BodySlot::linear_velocity);
+  if (impl_->recorder) impl_->recorder->set_vector(recording::Tag::SetLinearVelocity, id, velocity);
 }
 
 void World::set_angular_velocity(BodyId id, const Eigen::Vector3d& velocity) {
   set_velocity(*impl_, "set_angular_velocity", id, velocity, &BodySlot::angular_velocity);
+  if (impl_->recorder)
+    impl_->recorder->set_vector(recording::Tag::SetAngularVelocity, id, velocity);
 }
 
 void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia) {
@@ -261,6 +272,7 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
   b.inertia = inertia;
   b.inverse_inertia = inertia.inverse();
   b.diagonal_inertia = inertia.isDiagonal(0.0);
+  if (impl_->recorder) impl_->recorder->set_mass_properties(id, mass, inertia);
 }
 
 void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
@@ -289,6 +301,7 @@ void World::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
   w.touch(slot);
   b.linear_velocity = v;
   b.angular_velocity = omega;
+  if (w.recorder) w.recorder->apply_impulse(id, impulse, world_point);
 }
 
 bool World::is_awake(BodyId id) const {
@@ -330,6 +343,18 @@ JointId add_joint(World::Impl& w, JointSlot&& joint) {
   w.coloring.add(slot, blocking(j.body_a), blocking(j.body_b));
   ++w.joint_count;
   return {slot, j.generation};
+}
+
+void record_created_joint(const World& world, World::Impl& w, JointId id) {
+  if (w.recorder) w.recorder->create_joint(world, id);
+}
+
+void reject_set_joint_while_recording(const World::Impl& w) {
+  if (w.recorder) {
+    throw std::logic_error(
+        "set_joint while recording: recordings (format version 1) do not store joint changes; "
+        "stop_recording first, or destroy the joint and create another");
+  }
 }
 
 void replace_joint(World::Impl& w, std::uint32_t slot, JointSlot&& joint) {
@@ -376,6 +401,7 @@ void World::destroy_joint(JointId id) {
   j.impulse.fill(0.0f);
   w.free_joints.push_back(slot);
   --w.joint_count;
+  if (w.recorder) w.recorder->destroy_joint(id);
 }
 
 bool World::is_valid(JointId id) const {

@@ -16,6 +16,10 @@
 
 namespace softstep {
 
+namespace recording {
+class Recorder;
+}
+
 struct BodySlot {
   std::uint32_t generation = 0;
   bool alive = false;
@@ -183,6 +187,7 @@ struct World::Impl {
   SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
   StepPlan plan;
   bool plan_built = false;  // false after any change of content or settings
+  std::unique_ptr<recording::Recorder> recorder;  // while recording (recording/recorder.cpp)
 
   // Bodies given a force or torque for the next step (may repeat a slot); cleared by the step.
   std::vector<std::uint32_t> forced_bodies;

@@ -9,6 +9,8 @@
 #include "softstep/joints/revolute.hpp"
 #include "softstep/joints/weld.hpp"
 #include "softstep/profile.hpp"
+#include "softstep/recording.hpp"
+#include "softstep/scene_file.hpp"
 #include "softstep/spring.hpp"
 #include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "softstep/body.hpp"
@@ -33,6 +34,7 @@ struct BodyState {
   double gravity_scale;
   double linear_damping;
   double angular_damping;
+  bool never_sleep;
 };
 
 // How the solver has laid out the joints (see graph_coloring/).
@@ -174,6 +176,19 @@ class World {
   // equal hashes mean equal worlds, bit for bit. For determinism checks and tests. The SIMD
   // width and thread count are left out: they never change a result.
   std::uint64_t state_hash() const;
+  // Hash of every body's slot, pose and velocities only: cheap enough to take after every
+  // step, which is what recordings do.
+  std::uint64_t motion_hash() const;
+
+  // Writes the world as it is now (a scene file's content) and from then on every call that
+  // changes it and every step (dt and the motion hash after it) to a binary file at `path`
+  // (softstep/recording.hpp replays it). Start it before the first step: a scene does not
+  // hold warm-start impulses or sleep state, so a world that has stepped cannot be replayed
+  // bit for bit (the replay says so). Throws std::runtime_error when the file cannot be
+  // written; a recording already running is stopped first.
+  void start_recording(const std::string& path);
+  // Ends the file with the world's state_hash and closes it. Nothing when not recording.
+  void stop_recording();
 
   // A point given in world coordinates, expressed in the body's frame (for joint anchors).
   Eigen::Vector3d local_point(BodyId id, const Eigen::Vector3d& world_point) const;

@@ -85,7 +85,7 @@ SOFTSTEP_INSTANTIATE_KIND(BallKind)
 SOFTSTEP_INSTANTIATE_JOINT_API(BallJointDef)
 
 JointId World::create_ball_joint(const BallJointDef& def) {
-  return create_joint_of(*impl_, "create_ball_joint", def);
+  return create_joint_of(*this, *impl_, "create_ball_joint", def);
 }
 
 BallJointDef World::ball_joint(JointId id) const {

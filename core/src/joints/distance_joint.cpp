@@ -153,7 +153,7 @@ SOFTSTEP_INSTANTIATE_KIND(DistanceKind)
 SOFTSTEP_INSTANTIATE_JOINT_API(DistanceJointDef)
 
 JointId World::create_distance_joint(const DistanceJointDef& def) {
-  return create_joint_of(*impl_, "create_distance_joint", def);
+  return create_joint_of(*this, *impl_, "create_distance_joint", def);
 }
 
 DistanceJointDef World::distance_joint(JointId id) const {

@@ -32,17 +32,25 @@ JointId add_joint(World::Impl& w, JointSlot&& joint);
 // The slot of a live joint of kind `type`, or InvalidArgument naming what it is instead.
 const JointSlot& joint_of_type(const World::Impl& w, std::string_view call, JointId id,
                                JointType type);
+// Reports a created joint (its finished id) to a running recording (world.cpp).
+void record_created_joint(const World& world, World::Impl& w, JointId id);
+// Recordings do not store set_joint yet: throws std::logic_error while one runs (world.cpp).
+void reject_set_joint_while_recording(const World::Impl& w);
 // Replaces a joint's settings in place (world.cpp): keeps id, bodies and impulses.
 void replace_joint(World::Impl& w, std::uint32_t slot, JointSlot&& joint);
 
+// Every joint type is created here: validated, added, then recorded with its finished id.
 template <class Def>
-JointId create_joint_of(World::Impl& w, std::string_view call, const Def& def) {
-  return add_joint(w, KindOf<Def>::make_slot(w, call, def));
+JointId create_joint_of(const World& world, World::Impl& w, std::string_view call,
+                        const Def& def) {
+  const JointId id = add_joint(w, KindOf<Def>::make_slot(w, call, def));
+  record_created_joint(world, w, id);
+  return id;
 }
 
 template <class Def>
 JointId World::create_joint(const Def& def) {
-  return create_joint_of(*impl_, "create_joint", def);
+  return create_joint_of(*this, *impl_, "create_joint", def);
 }
 
 template <class Def>
@@ -54,6 +62,7 @@ Def World::joint_def(JointId id) const {
 template <class Def>
 void World::set_joint(JointId id, const Def& def) {
   using K = KindOf<Def>;
+  reject_set_joint_while_recording(*impl_);
   const JointSlot& old = joint_of_type(*impl_, "set_joint", id, K::type);
   JointSlot next = K::make_slot(*impl_, "set_joint", def);
   if (next.body_a != old.body_a || next.body_b != old.body_b) {

@@ -1,0 +1,59 @@
+// The recording file format, version 1 (little-endian throughout):
+//
+//   header   "SSTEPREC" (8 bytes), u32 version,
+//            u64 length + the initial world as a scene file (JSON, scene_save.cpp),
+//            u64 World::state_hash() of that world
+//   records  u8 tag + payload, in call order (Tag below); a step is f64 dt + u64 motion hash
+//   end      u8 kEnd + u64 World::state_hash() at stop_recording
+//
+// Bodies and joints are named by their ids (u32 slot, u32 generation): the replayed world was
+// checked equal to the recorded one at the start (state_hash covers the ids), so the same
+// calls give the same ids. Created bodies and joints are written as their scene-file JSON (a
+// joint through the joint-format table), so a new joint type needs nothing here.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+namespace softstep::recording {
+
+inline constexpr char kMagic[8] = {'S', 'S', 'T', 'E', 'P', 'R', 'E', 'C'};
+inline constexpr std::uint32_t kVersion = 1;
+
+enum class Tag : std::uint8_t {
+  Step = 1,                // f64 dt, u64 motion hash after the step
+  CreateBody = 2,          // u32 length + body JSON, then the id it got
+  DestroyBody = 3,         // id
+  SetPosition = 4,         // id, 3 f64
+  SetOrientation = 5,      // id, 4 f64 (w, x, y, z)
+  SetLinearVelocity = 6,   // id, 3 f64
+  SetAngularVelocity = 7,  // id, 3 f64
+  SetMassProperties = 8,   // id, f64 mass, 9 f64 inertia (rows)
+  ApplyImpulse = 9,        // id, 3 f64 impulse, 3 f64 world point
+  CreateJoint = 10,        // u32 length + joint JSON (bodies by slot), then the id it got
+  DestroyJoint = 11,       // id
+  SetSettings = 12,        // u32 length + settings JSON
+  End = 255,               // u64 state hash
+};
+
+// Appends little-endian values (this library's targets are little-endian x86-64).
+class ByteWriter {
+ public:
+  template <class T>
+  void put(const T& v) {
+    const auto at = bytes_.size();
+    bytes_.resize(at + sizeof(T));
+    std::memcpy(bytes_.data() + at, &v, sizeof(T));
+  }
+  void put_text(const std::string& text) {
+    put(static_cast<std::uint32_t>(text.size()));
+    bytes_ += text;
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+}  // namespace softstep::recording

@@ -1,0 +1,285 @@
+// replay_recording: reads a recording with every length and count checked against what is
+// left of the file, re-makes each call on a world loaded from its initial scene, and compares
+// the motion hash after every step. Anything unexpected is a RecordingError naming the file
+// and the byte or step; nothing in a file can make it read out of bounds.
+#include <fstream>
+#include <sstream>
+
+#include "format.hpp"
+#include "scene/body_format.hpp"
+#include "scene/joint_formats.hpp"
+#include "scene/json_reader.hpp"
+#include "scene/settings_format.hpp"
+#include "softstep/recording.hpp"
+#include "softstep/scene_file.hpp"
+
+namespace softstep {
+
+namespace {
+
+using recording::Tag;
+
+std::string hex(std::uint64_t v) {
+  char b[20];
+  std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
+  return b;
+}
+
+class ByteReader {
+ public:
+  ByteReader(const std::string& bytes, const std::string& name) : bytes_(bytes), name_(name) {}
+
+  template <class T>
+  T get(const char* what) {
+    need(sizeof(T), what);
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
+    at_ += sizeof(T);
+    return v;
+  }
+  std::string text(std::size_t size, const char* what) {
+    need(size, what);
+    std::string t = bytes_.substr(at_, size);
+    at_ += size;
+    return t;
+  }
+  std::string text(const char* what) { return text(get<std::uint32_t>(what), what); }
+  bool at_end() const { return at_ == bytes_.size(); }
+  std::size_t offset() const { return at_; }
+
+ private:
+  void need(std::size_t size, const char* what) const {
+    if (size > bytes_.size() - at_)
+      throw RecordingError(name_ + ": truncated at byte " + std::to_string(at_) + " (reading " +
+                           what + ": " + std::to_string(size) + " bytes, " +
+                           std::to_string(bytes_.size() - at_) + " left)");
+  }
+  const std::string& bytes_;
+  const std::string& name_;
+  std::size_t at_ = 0;
+};
+
+class Replayer {
+ public:
+  Replayer(const std::string& bytes, const std::string& name,
+           const std::function<void(World&, long, double)>& after_step)
+      : in_(bytes, name), name_(name), after_step_(after_step) {}
+
+  ReplayReport run() {
+    header();
+    while (true) {
+      if (in_.at_end())
+        throw RecordingError(name_ + ": ends after step " + std::to_string(report_.steps) +
+                             " without its end record (cut short, or stop_recording was not "
+                             "called); every step up to there matched");
+      record_at_ = in_.offset();
+      const auto tag = static_cast<Tag>(in_.get<std::uint8_t>("a record's tag"));
+      if (tag == Tag::End) break;
+      try {
+        record(tag);
+      } catch (const SceneFileError& e) {
+        fail(e.what());
+      } catch (const InvalidArgument& e) {
+        fail(std::string("the call is refused: ") + e.what());
+      }
+    }
+    const std::uint64_t recorded = in_.get<std::uint64_t>("the final state hash");
+    if (!in_.at_end()) fail("bytes after the end record");
+    report_.state_hash = world_.state_hash();
+    if (report_.state_hash != recorded)
+      fail("the state hash at the end is " + hex(report_.state_hash) + ", the recording has " +
+           hex(recorded));
+    return report_;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const {
+    throw RecordingError(name_ + ": record at byte " + std::to_string(record_at_) +
+                         " (after step " + std::to_string(report_.steps) + "): " + why);
+  }
+
+  void header() {
+    const std::string magic = in_.text(sizeof recording::kMagic, "the file's signature");
+    if (magic != std::string(recording::kMagic, sizeof recording::kMagic))
+      throw RecordingError(name_ + ": not a softstep recording (no SSTEPREC signature)");
+    const auto version = in_.get<std::uint32_t>("the version");
+    if (version != recording::kVersion)
+      throw RecordingError(name_ + ": a recording of version " + std::to_string(version) +
+                           "; this softstep reads version " + std::to_string(recording::kVersion));
+    const auto scene_size = in_.get<std::uint64_t>("the initial scene's length");
+    const std::string scene = in_.text(scene_size, "the initial scene");
+    try {
+      world_ = load_scene_text(scene, name_ + " (its initial scene)");
+    } catch (const SceneFileError& e) {
+      throw RecordingError(e.what());
+    }
+    const auto start_hash = in_.get<std::uint64_t>("the initial state hash");
+    if (world_.state_hash() != start_hash)
+      throw RecordingError(
+          name_ +
+          ": its initial scene does not load into the world that was recorded (state hash " +
+          hex(world_.state_hash()) + " against " + hex(start_hash) +
+          "): the recording was started on a world that had stepped or destroyed bodies, whose "
+          "warm-start impulses, sleep state or ids a scene does not hold; start recording before "
+          "the first step");
+    for (BodyId id : world_.body_ids()) remember(id);
+  }
+
+  void remember(BodyId id) {
+    if (id.index >= by_slot_.size()) by_slot_.resize(id.index + 1);
+    by_slot_[id.index] = id;
+  }
+
+  template <class Id>
+  Id read_id() {
+    Id id;
+    id.index = in_.get<std::uint32_t>("an id");
+    id.generation = in_.get<std::uint32_t>("an id");
+    return id;
+  }
+  Eigen::Vector3d read_vector() {
+    Eigen::Vector3d v;
+    for (int k = 0; k < 3; ++k) v[k] = in_.get<double>("a vector");
+    return v;
+  }
+  template <class Id>
+  void expect_id(Id got) {
+    const Id recorded = read_id<Id>();
+    if (got != recorded)
+      fail("the call gave id " + std::to_string(got.index) + "/" + std::to_string(got.generation) +
+           ", the recording has " + std::to_string(recorded.index) + "/" +
+           std::to_string(recorded.generation));
+  }
+  // A JSON record, read with the scene file's readers.
+  template <class Read>
+  auto from_json(const char* what, Read&& read) {
+    const std::string text = in_.text(what);
+    scene::json j;
+    try {
+      j = scene::json::parse(text);
+    } catch (const scene::json::exception& e) {
+      fail(std::string(what) + " is not valid JSON: " + e.what());
+    }
+    const scene::Source source{name_ + " (" + what + " at byte " + std::to_string(record_at_) + ")",
+                               &j};
+    scene::ObjectReader fields(source, j, "");
+    return read(fields);
+  }
+
+  void record(Tag tag) {
+    switch (tag) {
+      case Tag::Step: {
+        const auto dt = in_.get<double>("a step's dt");
+        const auto recorded = in_.get<std::uint64_t>("a step's motion hash");
+        world_.step(dt);
+        ++report_.steps;
+        const std::uint64_t now = world_.motion_hash();
+        if (now != recorded)
+          throw RecordingError(name_ + ": step " + std::to_string(report_.steps) +
+                               " diverged: motion hash " + hex(now) + ", the recording has " +
+                               hex(recorded) + " (record at byte " + std::to_string(record_at_) +
+                               ")");
+        if (after_step_) after_step_(world_, report_.steps, dt);
+        return;
+      }
+      case Tag::CreateBody: {
+        const BodyDef def =
+            from_json("a body", [](scene::ObjectReader& f) { return scene::read_body(f); });
+        const BodyId id = world_.create_body(def);
+        expect_id(id);
+        remember(id);
+        break;
+      }
+      case Tag::DestroyBody: {
+        const auto id = read_id<BodyId>();
+        world_.destroy_body(id);
+        by_slot_[id.index] = BodyId{};
+        break;
+      }
+      case Tag::SetPosition: {
+        const auto id = read_id<BodyId>();
+        world_.set_position(id, read_vector());
+        break;
+      }
+      case Tag::SetOrientation: {
+        const auto id = read_id<BodyId>();
+        double c[4];
+        for (double& x : c) x = in_.get<double>("a quaternion");
+        world_.set_orientation(id, Quaternion(c[0], c[1], c[2], c[3]));
+        break;
+      }
+      case Tag::SetLinearVelocity: {
+        const auto id = read_id<BodyId>();
+        world_.set_linear_velocity(id, read_vector());
+        break;
+      }
+      case Tag::SetAngularVelocity: {
+        const auto id = read_id<BodyId>();
+        world_.set_angular_velocity(id, read_vector());
+        break;
+      }
+      case Tag::SetMassProperties: {
+        const auto id = read_id<BodyId>();
+        const auto mass = in_.get<double>("a mass");
+        Eigen::Matrix3d inertia;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) inertia(r, c) = in_.get<double>("an inertia");
+        world_.set_mass_properties(id, mass, inertia);
+        break;
+      }
+      case Tag::ApplyImpulse: {
+        const auto id = read_id<BodyId>();
+        const Eigen::Vector3d impulse = read_vector();
+        world_.apply_impulse(id, impulse, read_vector());
+        break;
+      }
+      case Tag::CreateJoint: {
+        const JointId id = from_json("a joint", [&](scene::ObjectReader& f) {
+          const scene::JointFormat* format = scene::joint_format(f.text("type"));
+          if (format == nullptr) scene::fail(f.source(), "/type", "unknown joint type");
+          return format->read(world_, f, by_slot_);
+        });
+        expect_id(id);
+        break;
+      }
+      case Tag::DestroyJoint:
+        world_.destroy_joint(read_id<JointId>());
+        break;
+      case Tag::SetSettings: {
+        const WorldSettings s =
+            from_json("settings", [](scene::ObjectReader& f) { return scene::read_settings(f); });
+        world_.set_settings(s);
+        break;
+      }
+      default:
+        fail("unknown record tag " + std::to_string(static_cast<int>(tag)));
+    }
+    ++report_.calls;
+  }
+
+  ByteReader in_;
+  const std::string& name_;
+  const std::function<void(World&, long, double)>& after_step_;
+  World world_;
+  std::vector<BodyId> by_slot_;
+  ReplayReport report_;
+  std::size_t record_at_ = 0;
+};
+
+}  // namespace
+
+ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,
+                                    const std::function<void(World&, long, double)>& after_step) {
+  return Replayer(bytes, name, after_step).run();
+}
+
+ReplayReport replay_recording(const std::string& path,
+                              const std::function<void(World&, long, double)>& after_step) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RecordingError(path + ": cannot open the file");
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  return replay_recording_bytes(bytes.str(), path, after_step);
+}
+
+}  // namespace softstep

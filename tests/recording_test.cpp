@@ -1,0 +1,199 @@
+// Recordings: a world recorded through every kind of call replays bit for bit; a recording
+// changed at one step fails replay at that step; truncated and corrupted files are refused
+// with a RecordingError that says where, never a crash.
+#include "softstep/recording.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scenes/chain_scene.hpp"
+#include "softstep/softstep.hpp"
+
+namespace softstep {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("softstep_recording_test_" + std::to_string(::getpid()) + "_" + name))
+      .string();
+}
+
+std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Records a chain and then every kind of call between steps; returns the final state_hash.
+std::uint64_t record_every_call(const std::string& path, int steps_after) {
+  World world;
+  scenes::ChainOptions chain;
+  chain.links = 12;
+  const scenes::ChainScene built = scenes::build_chain(world, chain);
+  world.start_recording(path);
+  for (int i = 0; i < 5; ++i) world.step(1.0 / 60.0);
+  BodyDef box;
+  box.position = {1.0, 2.0, 0.5};
+  box.mass = 2.0;
+  const BodyId extra = world.create_body(box);
+  BallJointDef ball;
+  ball.body_a = built.links[0].back();
+  ball.body_b = extra;
+  ball.spring = Spring::soft(4.0, 0.5);
+  const JointId soft = world.create_ball_joint(ball);
+  DistanceJointDef rope;
+  rope.body_a = built.anchors[0];
+  rope.body_b = extra;
+  rope.rest_length = 2.0;
+  rope.max_length = 2.5;
+  rope.spring = Spring::free();
+  world.create_distance_joint(rope);
+  world.step(1.0 / 60.0);
+  world.set_position(built.links[0][3], {0.8, 0.1, 0.0});
+  world.set_orientation(built.links[0][4],
+                        Quaternion(Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX())));
+  world.set_linear_velocity(built.links[0][5], {0.0, 1.0, 0.0});
+  world.set_angular_velocity(built.links[0][6], {0.0, 0.0, 2.0});
+  world.set_mass_properties(built.links[0][7], 3.0, solid_sphere_inertia(3.0, 0.1));
+  world.apply_impulse(built.links[0][8], {0.5, 0.0, 0.0}, {2.0, 0.1, 0.0});
+  world.step(1.0 / 30.0);
+  world.destroy_joint(soft);
+  world.destroy_body(built.links[0][10]);
+  WorldSettings s = world.settings();
+  s.substeps = 6;
+  s.gravity = {0.0, -5.0, 0.0};
+  world.set_settings(s);
+  for (int i = 0; i < steps_after; ++i) world.step(1.0 / 60.0);
+  world.stop_recording();
+  return world.state_hash();
+}
+
+TEST(Recording, EveryCallReplaysBitForBit) {
+  const std::string path = temp_path("every_call");
+  const std::uint64_t hash = record_every_call(path, 20);
+  long seen = 0;
+  const ReplayReport report =
+      replay_recording(path, [&](World&, long step, double) { seen = step; });
+  EXPECT_EQ(report.steps, 27);
+  EXPECT_EQ(seen, 27);
+  EXPECT_EQ(report.calls, 14);  // 12 calls, and the 2 joints destroyed with the body
+  EXPECT_EQ(report.state_hash, hash);
+  std::filesystem::remove(path);
+}
+
+TEST(Recording, AChangedStepFailsReplayAtThatStep) {
+  const std::string path = temp_path("changed");
+  record_every_call(path, 20);
+  const std::string bytes = read_bytes(path);
+  // The last 20 steps are 17-byte records (tag, dt, hash) before the 9-byte end record.
+  for (int step : {8, 15, 27}) {
+    std::string changed = bytes;
+    const std::size_t at = changed.size() - 9 - std::size_t(27 - step + 1) * 17;
+    ASSERT_EQ(changed[at], 1) << "not a step record";
+    double dt;
+    std::memcpy(&dt, &changed[at + 1], sizeof dt);
+    dt *= 1.001;
+    std::memcpy(&changed[at + 1], &dt, sizeof dt);
+    try {
+      replay_recording_bytes(changed, "changed.rec");
+      ADD_FAILURE() << "replayed";
+    } catch (const RecordingError& e) {
+      EXPECT_NE(std::string(e.what()).find("step " + std::to_string(step) + " diverged"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(Recording, TruncatedFilesAreRefusedEverywhere) {
+  const std::string path = temp_path("truncated");
+  record_every_call(path, 3);
+  const std::string bytes = read_bytes(path);
+  for (std::size_t size = 0; size < bytes.size(); size += 1 + size / 64) {
+    SCOPED_TRACE(size);
+    try {
+      replay_recording_bytes(bytes.substr(0, size), "cut.rec");
+      ADD_FAILURE() << "replayed";
+    } catch (const RecordingError& e) {
+      const std::string m = e.what();
+      EXPECT_EQ(m.rfind("cut.rec", 0), 0) << m;
+      EXPECT_TRUE(m.find("truncated") != std::string::npos ||
+                  m.find("without its end record") != std::string::npos ||
+                  m.find("not a softstep recording") != std::string::npos)
+          << m;
+    }
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(Recording, CorruptedFilesSayWhatIsWrong) {
+  const std::string path = temp_path("corrupt");
+  record_every_call(path, 3);
+  const std::string bytes = read_bytes(path);
+  struct Case {
+    const char* what;
+    std::size_t at;
+    char value;
+    const char* message;
+  };
+  const std::uint64_t scene_size = [&] {
+    std::uint64_t n;
+    std::memcpy(&n, &bytes[12], sizeof n);
+    return n;
+  }();
+  const std::size_t first_record = 20 + scene_size + 8;
+  const Case cases[] = {
+      {"signature", 0, 'X', "not a softstep recording"},
+      {"version", 8, 2, "version 2"},
+      {"scene", 20 + 2, '!', "initial scene"},
+      {"unknown tag", first_record, 77, "unknown record tag 77"},
+      {"initial hash", 20 + scene_size, 0x5a, "start recording before the first step"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    std::string changed = bytes;
+    changed[c.at] = c.value;
+    try {
+      replay_recording_bytes(changed, "bad.rec");
+      ADD_FAILURE() << "replayed";
+    } catch (const RecordingError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+  std::string extra = bytes + "x";
+  EXPECT_THROW(replay_recording_bytes(extra, "long.rec"), RecordingError);
+  std::filesystem::remove(path);
+}
+
+TEST(Recording, AWorldThatSteppedBeforeRecordingIsNamedAsSuch) {
+  const std::string path = temp_path("stepped");
+  {
+    World world;
+    scenes::ChainOptions chain;
+    chain.links = 5;
+    scenes::build_chain(world, chain);
+    world.step(1.0 / 60.0);  // warm-start impulses a scene file does not hold
+    world.start_recording(path);
+    world.step(1.0 / 60.0);
+    world.stop_recording();
+  }
+  try {
+    replay_recording(path);
+    ADD_FAILURE() << "replayed";
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string(e.what()).find("start recording before the first step"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace softstep

@@ -1,0 +1,215 @@
+// The tool's command line: help generated from the options, errors that name the option and
+// the value (exit code 2), the option names the README uses, and the JSON report's keys.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_tool.hpp"
+
+namespace softstep::tool_test {
+namespace {
+
+TEST(ToolCli, HelpListsEveryCommandsOptions) {
+  const ToolRun top = run_tool("--help");
+  EXPECT_EQ(top.exit_code, 0);
+  for (const char* command : {"profile", "sweep", "hardcases"})
+    EXPECT_NE(top.out.find(command), std::string::npos) << command;
+
+  const ToolRun profile = run_tool("profile --help");
+  EXPECT_EQ(profile.exit_code, 0);
+  for (const char* option :
+       {"--links",    "--chains",     "--joint",     "--layout",  "--end-mass", "--size",
+        "--span",     "--loads",      "--load-mass", "--hertz",   "--zeta",     "--steps",
+        "--substeps", "--iterations", "--relax",     "--threads", "--simd",     "--no-warm-start",
+        "--no-sleep", "--general",    "--plan",      "--json",    "--csv",      "--trace"})
+    EXPECT_NE(profile.out.find(option), std::string::npos) << option;
+
+  const ToolRun sweep = run_tool("sweep --help");
+  EXPECT_EQ(sweep.exit_code, 0);
+  for (const char* option : {"--out", "--warm-start", "--rigid-hertz", "--runs", "--error",
+                             "--reference-substeps", "--reference-iterations", "--probes"})
+    EXPECT_NE(sweep.out.find(option), std::string::npos) << option;
+
+  const ToolRun hard = run_tool("hardcases --help");
+  EXPECT_EQ(hard.exit_code, 0);
+  EXPECT_NE(hard.out.find("--quick"), std::string::npos);
+}
+
+struct BadLine {
+  const char* arguments;
+  const char* option;  // the message must name it...
+  const char* value;   // ...and the value
+};
+
+TEST(ToolCli, BadValuesNameTheOptionAndTheValue) {
+  const BadLine lines[] = {
+      {"profile chain --links 0", "--links", "0"},
+      {"profile chain --links ten", "--links", "ten"},
+      {"profile --hertz nan", "--hertz", "nan"},
+      {"profile --hertz -3", "--hertz", "-3"},
+      {"profile --simd avx512", "--simd", "avx512"},
+      {"profile --joint hinge", "--joint", "hinge"},
+      {"profile grid --links 3", "--links", "grid"},
+      {"profile bridge --span 4 --loads 5", "--loads", "5"},
+      {"profile --zeta 0.5", "--zeta", "--hertz"},
+      {"profile --frobnicate", "--frobnicate", "--frobnicate"},
+      {"sweep --out d --substeps 1,0", "--substeps", "0"},
+      {"sweep --out d --warm-start maybe", "--warm-start", "maybe"},
+      {"sweep --steps 10", "--out", "--out"},
+      {"hardcases --simd wide", "--simd", "wide"},
+  };
+  for (const BadLine& line : lines) {
+    const ToolRun run = run_tool(line.arguments);
+    EXPECT_EQ(run.exit_code, 2) << line.arguments;
+    EXPECT_NE(run.err.find(line.option), std::string::npos) << line.arguments << ": " << run.err;
+    EXPECT_NE(run.err.find(line.value), std::string::npos) << line.arguments << ": " << run.err;
+    EXPECT_NE(run.err.find("--help"), std::string::npos) << "no pointer to the help: " << run.err;
+  }
+}
+
+TEST(ToolCli, ProfileWritesItsFiguresAsJson) {
+  const std::string dir = scratch_dir("profile_json");
+  const ToolRun run = run_tool(
+      "profile chain --links 20 --chains 2 --hertz 5 --zeta 0.7 --steps 10 "
+      "--threads 1 --json " +
+      dir + "/p.json --csv " + dir + "/p.csv --trace " + dir + "/t.json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(read_text(dir + "/p.json"));
+  for (const char* key : {"scene",
+                          "bodies",
+                          "joints",
+                          "steps",
+                          "substeps",
+                          "solve_iterations",
+                          "relax_iterations",
+                          "threads",
+                          "simd",
+                          "ms_per_step",
+                          "stage_ms",
+                          "rows_per_second",
+                          "barrier_wait_share",
+                          "colors",
+                          "max_joint_error_m",
+                          "rms_joint_error_m",
+                          "max_joint_error_run_m",
+                          "stretch_ratio",
+                          "state_hash",
+                          "awake_bodies",
+                          "sleeping_islands",
+                          "plan"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["bodies"], 42);
+  EXPECT_EQ(j["joints"], 40);
+  EXPECT_EQ(j["steps"], 10);
+  // The hash the table printed is the hash the file holds.
+  EXPECT_NE(run.out.find(j["state_hash"].get<std::string>()), std::string::npos);
+  for (const char* key : {"stages", "effects", "kernels", "rows_per_pass"})
+    EXPECT_TRUE(j["plan"].contains(key)) << key;
+  const nlohmann::json trace = nlohmann::json::parse(read_text(dir + "/t.json"));
+  ASSERT_FALSE(trace["traceEvents"].empty());
+  EXPECT_EQ(trace["traceEvents"][0]["ph"], "X");
+}
+
+
+std::string state_hash_line(const std::string& out) {
+  const std::size_t at = out.find("state hash");
+  return at == std::string::npos ? "" : out.substr(at, out.find('\n', at) - at);
+}
+
+TEST(ToolCli, SavedSceneProfilesToTheSameState) {
+  const std::string dir = scratch_dir("saved_scene");
+  const std::string common = " --steps 20 --threads 1";
+  for (const std::string scene : {"chain --links 30 --chains 2 --joint distance --hertz 4",
+                                  "grid --size 6", "bridge --span 30 --loads 3"}) {
+    SCOPED_TRACE(scene);
+    const ToolRun built = run_tool("profile " + scene + common + " --save " + dir + "/s.json");
+    ASSERT_EQ(built.exit_code, 0) << built.err;
+    const ToolRun loaded = run_tool("profile " + dir + "/s.json" + common);
+    ASSERT_EQ(loaded.exit_code, 0) << loaded.err;
+    EXPECT_FALSE(state_hash_line(built.out).empty());
+    EXPECT_EQ(state_hash_line(loaded.out), state_hash_line(built.out));
+  }
+  // The other command that takes a scene takes a file too.
+  const ToolRun sweep = run_tool("sweep " + dir + "/s.json --out " + dir +
+                                 "/sweep --steps 4 --substeps 1 --relax 0 --runs 1 --probes 1");
+  EXPECT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_NE(read_text(dir + "/sweep/results.csv").find("substeps"), std::string::npos);
+}
+
+TEST(ToolCli, ABadSceneFileIsNamedWithTheFieldAndValue) {
+  const std::string dir = scratch_dir("bad_scene");
+  ASSERT_EQ(run_tool("profile chain --links 3 --steps 1 --save " + dir + "/s.json").exit_code, 0);
+  std::string text = read_text(dir + "/s.json");
+  text.replace(text.find("\"mass\":1.0"), 10, "\"mass\":-3");
+  { std::ofstream(dir + "/bad.json") << text; }
+  const ToolRun run = run_tool("profile " + dir + "/bad.json");
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_NE(run.err.find(dir + "/bad.json: /bodies/1/mass = -3"), std::string::npos) << run.err;
+  const ToolRun options = run_tool("profile " + dir + "/s.json --links 4");
+  EXPECT_EQ(options.exit_code, 2);
+  EXPECT_NE(options.err.find("--links"), std::string::npos) << options.err;
+}
+
+
+TEST(ToolCli, ViewSubsamplesBodiesJointsAndFrames) {
+  const std::string dir = scratch_dir("view_subsample");
+  ASSERT_EQ(run_tool("profile chain --links 200 --steps 1 --save " + dir + "/s.json").exit_code, 0);
+  const ToolRun run = run_tool("view " + dir +
+                               "/s.json --steps 100 --max-bodies 10 --max-joints 20 "
+                               "--frames 10 --out " +
+                               dir + "/page");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  // Every 20th body (10) plus both ends of every 10th joint (40), some shared; at most 10
+  // frames before the last step's.
+  EXPECT_NE(run.out.find("of 201 bodies, 20 of 200 joints"), std::string::npos) << run.out;
+  const std::size_t frames_at = run.out.find(" frames of 100 steps");
+  ASSERT_NE(frames_at, std::string::npos) << run.out;
+  const int frames = std::stoi(run.out.substr(run.out.rfind(' ', frames_at - 1) + 1));
+  EXPECT_LE(frames, 11);
+  EXPECT_GE(frames, 5);
+  const std::string page = read_text(dir + "/page/index.html");
+  // Self-contained: no resource is fetched from anywhere.
+  for (const char* fetch : {"src=", "href=", "http://", "https://", "import(", "fetch("})
+    EXPECT_EQ(page.find(fetch), std::string::npos) << fetch;
+}
+
+TEST(ToolCli, HardcasesWriteAViewerPagePerCase) {
+  const std::string dir = scratch_dir("hardcases_view");
+  const ToolRun run = run_tool("hardcases --quick --view " + dir);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string index = read_text(dir + "/index.html");
+  int pages = 0;
+  for (std::size_t at = index.find("href=\""); at != std::string::npos;
+       at = index.find("href=\"", at + 1), ++pages) {
+    const std::string file = index.substr(at + 6, index.find('"', at + 6) - at - 6);
+    const std::string page = read_text(dir + "/" + file);
+    EXPECT_NE(page.find("data-state=\"loading\""), std::string::npos) << file;
+    EXPECT_EQ(page.find("/*SOFTSTEP_DATA*/"), std::string::npos) << file << ": no data";
+  }
+  EXPECT_GE(pages, 15);  // every case but the 10,000-link chains
+  EXPECT_NE(index.find("kinematic driver"), std::string::npos);
+}
+
+
+TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
+  const std::string dir = scratch_dir("record");
+  const ToolRun profile =
+      run_tool("profile chain --links 20 --hertz 4 --steps 30 --record " + dir + "/run.rec");
+  ASSERT_EQ(profile.exit_code, 0) << profile.err;
+  const ToolRun replay = run_tool("replay " + dir + "/run.rec");
+  EXPECT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_NE(replay.out.find("30 steps"), std::string::npos) << replay.out;
+  // The same final state as the profiled run.
+  const std::string hash = profile.out.substr(profile.out.find("state hash") + 17, 16);
+  EXPECT_NE(replay.out.find(hash), std::string::npos) << replay.out;
+
+  std::string bytes = read_text(dir + "/run.rec");
+  { std::ofstream(dir + "/cut.rec", std::ios::binary) << bytes.substr(0, bytes.size() - 30); }
+  const ToolRun cut = run_tool("replay " + dir + "/cut.rec");
+  EXPECT_EQ(cut.exit_code, 1);
+  EXPECT_NE(cut.err.find("cut.rec"), std::string::npos) << cut.err;
+}
+
+}  // namespace
+}  // namespace softstep::tool_test
