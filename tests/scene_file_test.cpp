@@ -15,6 +15,7 @@
 #include "scenes/bridge_scene.hpp"
 #include "scenes/chain_scene.hpp"
 #include "scenes/grid_scene.hpp"
+#include "scenes/joint_zoo.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
@@ -134,6 +135,11 @@ std::vector<BuiltScene> built_scenes() {
   scenes::BridgeOptions bridge;
   bridge.span = 40;
   bridge.loads = 4;
+  // Every revolute, prismatic and weld variant (plain, limit, motor, spring, all; rigid and
+  // soft welds), a chain of each.
+  scenes::JointZooOptions zoo;
+  zoo.chains = scenes::kZooJointKinds;
+  zoo.links = 3;
   return {
       {"chain", {}, [=](World& w) { scenes::build_chain(w, chain); }},
       {"soft_hanging_distance_chain", {}, [=](World& w) { scenes::build_chain(w, soft_chain); }},
@@ -141,6 +147,7 @@ std::vector<BuiltScene> built_scenes() {
       {"grid", {}, [=](World& w) { scenes::build_grid(w, grid); }},
       {"bridge", {}, [=](World& w) { scenes::build_bridge(w, bridge); }},
       {"every_feature", unusual_settings(), build_every_feature},
+      {"joint_zoo", {}, [=](World& w) { scenes::build_joint_zoo(w, zoo); }},
   };
 }
 

@@ -1,6 +1,10 @@
 #include "joint_formats.hpp"
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
+
+#include "softstep/softstep.hpp"
 
 namespace softstep::scene {
 
@@ -70,9 +74,148 @@ void write_distance(const World& world, JointId id, const BodyIndex& index, nloh
   if (std::isfinite(def.max_length)) out["max_length"] = def.max_length;
 }
 
+// The angular joints (revolute, prismatic, weld): bodies and a frame on each, as the Defs in
+// softstep/joints/*.hpp hold them. Nested objects carry the Defs' own field names, so an
+// InvalidArgument naming "RevoluteJointDef.frame_a.local_axis" lands at .../frame_a/local_axis.
+
+JointFrame read_frame(ObjectReader& parent, const char* key) {
+  ObjectReader f(parent.source(), parent.object(key), parent.path_of(key));
+  JointFrame frame;
+  frame.local_anchor = f.vec3("local_anchor", frame.local_anchor);
+  frame.local_axis = f.vec3("local_axis", frame.local_axis);
+  frame.local_reference = f.vec3("local_reference", frame.local_reference);
+  f.no_other_keys();
+  return frame;
+}
+
+nlohmann::json frame_json(const JointFrame& frame) {
+  return {{"local_anchor", vector_json(frame.local_anchor)},
+          {"local_axis", vector_json(frame.local_axis)},
+          {"local_reference", vector_json(frame.local_reference)}};
+}
+
+template <class Def>
+void read_frames(ObjectReader& fields, const std::vector<BodyId>& bodies, Def& def) {
+  def.body_a = fields.body("body_a", bodies);
+  def.body_b = fields.body("body_b", bodies);
+  def.frame_a = read_frame(fields, "frame_a");
+  def.frame_b = read_frame(fields, "frame_b");
+}
+
+template <class Def>
+void write_frames(const Def& def, const BodyIndex& index, nlohmann::json& out) {
+  out["body_a"] = index(def.body_a);
+  out["body_b"] = index(def.body_b);
+  out["frame_a"] = frame_json(def.frame_a);
+  out["frame_b"] = frame_json(def.frame_b);
+}
+
+// A missing bound is no bound (JSON has no infinity).
+AxisLimit read_limit(ObjectReader& parent) {
+  ObjectReader f(parent.source(), parent.object("limit"), parent.path_of("limit"));
+  AxisLimit limit;
+  limit.enabled = f.boolean("enabled", limit.enabled);
+  limit.lower = f.number("lower", -std::numeric_limits<double>::infinity());
+  limit.upper = f.number("upper", std::numeric_limits<double>::infinity());
+  f.no_other_keys();
+  return limit;
+}
+
+nlohmann::json limit_json(const AxisLimit& limit) {
+  nlohmann::json j = {{"enabled", limit.enabled}};
+  if (std::isfinite(limit.lower)) j["lower"] = limit.lower;
+  if (std::isfinite(limit.upper)) j["upper"] = limit.upper;
+  return j;
+}
+
+// The motor's torque or force field: "max_torque" (revolute) or "max_force" (prismatic).
+template <class Motor>
+Motor read_motor(ObjectReader& parent, const char* max_key, double Motor::*max) {
+  ObjectReader f(parent.source(), parent.object("motor"), parent.path_of("motor"));
+  Motor motor;
+  motor.enabled = f.boolean("enabled", motor.enabled);
+  motor.speed = f.number("speed", motor.speed);
+  motor.*max = f.number(max_key, motor.*max);
+  f.no_other_keys();
+  return motor;
+}
+
+template <class Motor>
+nlohmann::json motor_json(const Motor& motor, const char* max_key, double Motor::*max) {
+  return {{"enabled", motor.enabled}, {"speed", motor.speed}, {max_key, motor.*max}};
+}
+
+AxisSpring read_axis_spring(ObjectReader& parent) {
+  ObjectReader f(parent.source(), parent.object("spring"), parent.path_of("spring"));
+  AxisSpring spring;
+  spring.spring = f.spring("spring", spring.spring);
+  spring.target = f.number("target", spring.target);
+  f.no_other_keys();
+  return spring;
+}
+
+nlohmann::json axis_spring_json(const AxisSpring& spring) {
+  return {{"spring", spring_json(spring.spring)}, {"target", spring.target}};
+}
+
+JointId read_revolute(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  RevoluteJointDef def;
+  read_frames(fields, bodies, def);
+  def.limit = read_limit(fields);
+  def.motor = read_motor(fields, "max_torque", &AngularMotor::max_torque);
+  def.spring = read_axis_spring(fields);
+  fields.no_other_keys();
+  return fields.call([&] { return world.create_joint(def); });
+}
+
+void write_revolute(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
+  const auto def = world.joint_def<RevoluteJointDef>(id);
+  write_frames(def, index, out);
+  out["limit"] = limit_json(def.limit);
+  out["motor"] = motor_json(def.motor, "max_torque", &AngularMotor::max_torque);
+  out["spring"] = axis_spring_json(def.spring);
+}
+
+JointId read_prismatic(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  PrismaticJointDef def;
+  read_frames(fields, bodies, def);
+  def.limit = read_limit(fields);
+  def.motor = read_motor(fields, "max_force", &LinearMotor::max_force);
+  def.spring = read_axis_spring(fields);
+  fields.no_other_keys();
+  return fields.call([&] { return world.create_joint(def); });
+}
+
+void write_prismatic(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
+  const auto def = world.joint_def<PrismaticJointDef>(id);
+  write_frames(def, index, out);
+  out["limit"] = limit_json(def.limit);
+  out["motor"] = motor_json(def.motor, "max_force", &LinearMotor::max_force);
+  out["spring"] = axis_spring_json(def.spring);
+}
+
+JointId read_weld(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  WeldJointDef def;
+  read_frames(fields, bodies, def);
+  def.linear = fields.spring("linear", def.linear);
+  def.angular = fields.spring("angular", def.angular);
+  fields.no_other_keys();
+  return fields.call([&] { return world.create_joint(def); });
+}
+
+void write_weld(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
+  const auto def = world.joint_def<WeldJointDef>(id);
+  write_frames(def, index, out);
+  out["linear"] = spring_json(def.linear);
+  out["angular"] = spring_json(def.angular);
+}
+
 constexpr JointFormat kJointFormats[] = {
     {"ball", JointType::Ball, read_ball, write_ball},
     {"distance", JointType::Distance, read_distance, write_distance},
+    {"revolute", JointType::Revolute, read_revolute, write_revolute},
+    {"prismatic", JointType::Prismatic, read_prismatic, write_prismatic},
+    {"weld", JointType::Weld, read_weld, write_weld},
 };
 
 }  // namespace
