@@ -4,6 +4,7 @@
 // in every sub-step, and cleared after the step.
 #include <algorithm>
 
+#include "recording/recorder.hpp"
 #include "validation.hpp"
 #include "world_impl.hpp"
 
@@ -86,6 +87,7 @@ void World::apply_force(BodyId id, const Eigen::Vector3d& force,
   const Eigen::Vector3d torque = (world_point - b.position).cross(force);
   check_load(w, call, slot, "force", force, "torque", b.torque + torque);
   add_load(w, slot, force, torque);
+  if (w.recorder) w.recorder->apply_force(id, force, world_point);
 }
 
 void World::apply_torque(BodyId id, const Eigen::Vector3d& torque) {
@@ -94,6 +96,7 @@ void World::apply_torque(BodyId id, const Eigen::Vector3d& torque) {
   const std::uint32_t slot = body_slot(w, call, "body", id);
   check_load(w, call, slot, "torque", torque, "torque", w.bodies[slot].torque + torque);
   add_load(w, slot, Eigen::Vector3d::Zero(), torque);
+  if (w.recorder) w.recorder->apply_torque(id, torque);
 }
 
 }  // namespace softstep

@@ -34,6 +34,8 @@ enum class Tag : std::uint8_t {
   CreateJoint = 10,        // u32 length + joint JSON (bodies by slot), then the id it got
   DestroyJoint = 11,       // id
   SetSettings = 12,        // u32 length + settings JSON
+  ApplyForce = 13,         // id, 3 f64 force, 3 f64 world point
+  ApplyTorque = 14,        // id, 3 f64 torque
   End = 255,               // u64 state hash
 };
 

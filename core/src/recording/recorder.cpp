@@ -85,6 +85,13 @@ void Recorder::apply_impulse(BodyId id, const Eigen::Vector3d& impulse,
   for (int k = 0; k < 3; ++k) buffer_.put(point[k]);
 }
 
+void Recorder::apply_force(BodyId id, const Eigen::Vector3d& force,
+                           const Eigen::Vector3d& point) {
+  id_record(Tag::ApplyForce, id.index, id.generation);
+  for (int k = 0; k < 3; ++k) buffer_.put(force[k]);
+  for (int k = 0; k < 3; ++k) buffer_.put(point[k]);
+}
+
 void Recorder::create_joint(const World& world, JointId id) {
   // Bodies by slot: the replay names them by the ids the same calls gave it.
   const scene::JointFormat& format = scene::joint_format(world.joint_type(id));

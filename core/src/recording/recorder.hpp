@@ -24,6 +24,10 @@ class Recorder {
   void set_orientation(BodyId id, const Quaternion& q);
   void set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& inertia);
   void apply_impulse(BodyId id, const Eigen::Vector3d& impulse, const Eigen::Vector3d& point);
+  void apply_force(BodyId id, const Eigen::Vector3d& force, const Eigen::Vector3d& point);
+  void apply_torque(BodyId id, const Eigen::Vector3d& torque) {
+    set_vector(Tag::ApplyTorque, id, torque);
+  }
   void create_joint(const World& world, JointId id);
   void destroy_joint(JointId id) { id_record(Tag::DestroyJoint, id.index, id.generation); }
   void set_settings(const WorldSettings& settings);

@@ -233,6 +233,17 @@ class Replayer {
         world_.apply_impulse(id, impulse, read_vector());
         break;
       }
+      case Tag::ApplyForce: {
+        const auto id = read_id<BodyId>();
+        const Eigen::Vector3d force = read_vector();
+        world_.apply_force(id, force, read_vector());
+        break;
+      }
+      case Tag::ApplyTorque: {
+        const auto id = read_id<BodyId>();
+        world_.apply_torque(id, read_vector());
+        break;
+      }
       case Tag::CreateJoint: {
         const JointId id = from_json("a joint", [&](scene::ObjectReader& f) {
           const scene::JointFormat* format = scene::joint_format(f.text("type"));
