@@ -154,12 +154,23 @@ SceneRun load_file_scene(World& world, const SceneChoice& c) {
     box.extend(s.position);
     if (s.type == BodyType::Dynamic) run.bodies.push_back(b);
   }
-  std::size_t ball = 0;
-  for (JointId j : run.joints) ball += world.joint_type(j) == JointType::Ball ? 1 : 0;
+  // Joints per type, in the order of JointType.
+  std::vector<std::pair<JointType, std::size_t>> per_type;
+  for (JointId j : run.joints) {
+    const JointType type = world.joint_type(j);
+    auto it = std::find_if(per_type.begin(), per_type.end(),
+                           [type](const auto& p) { return p.first == type; });
+    if (it == per_type.end()) per_type.emplace_back(type, 1);
+    else ++it->second;
+  }
+  std::sort(per_type.begin(), per_type.end());
+  std::string joints_text;
+  for (const auto& [type, n] : per_type)
+    joints_text += (joints_text.empty() ? "" : ", ") + std::to_string(n) + " " +
+                   joint_type_name(type);
   run.rows = static_cast<double>(world.step_plan().rows_per_pass);
   run.description = "file " + c.scene + ": " + std::to_string(world.body_count()) + " bodies, " +
-                    std::to_string(ball) + " ball and " + std::to_string(run.joints.size() - ball) +
-                    " distance joints";
+                    (joints_text.empty() ? std::string("no") : joints_text) + " joints";
   run.reach = box.isEmpty() ? 0.0 : box.diagonal().norm();
   return run;
 }
