@@ -88,7 +88,8 @@ TEST(Recording, EveryCallReplaysBitForBit) {
 }
 
 // The angular joints created while recording (through the generic create_joint, so the
-// recorder sees their finished ids), applied forces and torques, replay bit for bit.
+// recorder sees their finished ids), set_joint on them, applied forces and torques, replay bit
+// for bit.
 TEST(Recording, AngularJointsAndAppliedForcesReplayBitForBit) {
   const std::string path = temp_path("angular");
   World world;
@@ -112,7 +113,7 @@ TEST(Recording, AngularJointsAndAppliedForcesReplayBitForBit) {
   hinge.limit = {true, -0.5, 0.4};
   hinge.motor = {true, 1.5, 20.0};
   hinge.spring = {Spring::soft(2.0, 0.3), 0.1};
-  world.create_joint(hinge);
+  const JointId hinged = world.create_joint(hinge);
   PrismaticJointDef slider;
   slider.body_a = boxes[0];
   slider.body_b = boxes[1];
@@ -136,13 +137,16 @@ TEST(Recording, AngularJointsAndAppliedForcesReplayBitForBit) {
     world.apply_torque(boxes[1], {0.0, 0.5, 0.0});
     world.step(1.0 / 60.0);
   }
-  // Recordings hold no set_joint record: refused while recording, and nothing is changed.
-  EXPECT_THROW(world.set_joint(welded, weld), std::logic_error);
+  // set_joint is recorded as the joint after the change.
+  weld.linear = Spring::soft(8.0, 0.2);
+  world.set_joint(welded, weld);
+  hinge.motor.speed = -2.0;
+  world.set_joint(hinged, hinge);
   world.step(1.0 / 60.0);
   world.stop_recording();
   const ReplayReport report = replay_recording(path, [](World&, long, double) {});
   EXPECT_EQ(report.steps, 11);
-  EXPECT_EQ(report.calls, 3 + 3 + 20);
+  EXPECT_EQ(report.calls, 3 + 3 + 20 + 2);
   EXPECT_EQ(report.state_hash, world.state_hash());
   std::filesystem::remove(path);
 }

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <stdexcept>
 
 #include "recording/recorder.hpp"
 #include "validation.hpp"
@@ -349,12 +348,8 @@ void record_created_joint(const World& world, World::Impl& w, JointId id) {
   if (w.recorder) w.recorder->create_joint(world, id);
 }
 
-void reject_set_joint_while_recording(const World::Impl& w) {
-  if (w.recorder) {
-    throw std::logic_error(
-        "set_joint while recording: recordings (format version 1) do not store joint changes; "
-        "stop_recording first, or destroy the joint and create another");
-  }
+void record_set_joint(const World& world, World::Impl& w, JointId id) {
+  if (w.recorder) w.recorder->set_joint(world, id);
 }
 
 void replace_joint(World::Impl& w, std::uint32_t slot, JointSlot&& joint) {

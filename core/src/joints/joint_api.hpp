@@ -34,8 +34,8 @@ const JointSlot& joint_of_type(const World::Impl& w, std::string_view call, Join
                                JointType type);
 // Reports a created joint (its finished id) to a running recording (world.cpp).
 void record_created_joint(const World& world, World::Impl& w, JointId id);
-// Recordings do not store set_joint yet: throws std::logic_error while one runs (world.cpp).
-void reject_set_joint_while_recording(const World::Impl& w);
+// Reports a joint changed by set_joint to a running recording (world.cpp).
+void record_set_joint(const World& world, World::Impl& w, JointId id);
 // Replaces a joint's settings in place (world.cpp): keeps id, bodies and impulses.
 void replace_joint(World::Impl& w, std::uint32_t slot, JointSlot&& joint);
 
@@ -62,7 +62,6 @@ Def World::joint_def(JointId id) const {
 template <class Def>
 void World::set_joint(JointId id, const Def& def) {
   using K = KindOf<Def>;
-  reject_set_joint_while_recording(*impl_);
   const JointSlot& old = joint_of_type(*impl_, "set_joint", id, K::type);
   JointSlot next = K::make_slot(*impl_, "set_joint", def);
   if (next.body_a != old.body_a || next.body_b != old.body_b) {
@@ -73,6 +72,7 @@ void World::set_joint(JointId id, const Def& def) {
                        "a joint keeps its bodies (destroy it and create another)");
   }
   replace_joint(*impl_, id.index, std::move(next));
+  record_set_joint(*this, *impl_, id);
 }
 
 }  // namespace softstep

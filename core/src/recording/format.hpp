@@ -9,7 +9,8 @@
 // Bodies and joints are named by their ids (u32 slot, u32 generation): the replayed world was
 // checked equal to the recorded one at the start (state_hash covers the ids), so the same
 // calls give the same ids. Created bodies and joints are written as their scene-file JSON (a
-// joint through the joint-format table), so a new joint type needs nothing here.
+// joint through the joint-format table), and so is a joint after set_joint, so a new joint
+// type needs nothing here.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +37,7 @@ enum class Tag : std::uint8_t {
   SetSettings = 12,        // u32 length + settings JSON
   ApplyForce = 13,         // id, 3 f64 force, 3 f64 world point
   ApplyTorque = 14,        // id, 3 f64 torque
+  SetJoint = 15,           // id, then u32 length + the joint's JSON after the change
   End = 255,               // u64 state hash
 };
 

@@ -104,6 +104,15 @@ void Recorder::create_joint(const World& world, JointId id) {
   flush_if_full();
 }
 
+void Recorder::set_joint(const World& world, JointId id) {
+  const scene::JointFormat& format = scene::joint_format(world.joint_type(id));
+  nlohmann::json j = {{"type", format.name}};
+  format.write(world, id, scene::BodyIndex::by_slot(), j);
+  id_record(Tag::SetJoint, id.index, id.generation);
+  buffer_.put_text(j.dump());
+  flush_if_full();
+}
+
 void Recorder::set_settings(const WorldSettings& settings) {
   buffer_.put(Tag::SetSettings);
   buffer_.put_text(scene::settings_json(settings).dump());

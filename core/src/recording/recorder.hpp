@@ -29,6 +29,7 @@ class Recorder {
     set_vector(Tag::ApplyTorque, id, torque);
   }
   void create_joint(const World& world, JointId id);
+  void set_joint(const World& world, JointId id);
   void destroy_joint(JointId id) { id_record(Tag::DestroyJoint, id.index, id.generation); }
   void set_settings(const WorldSettings& settings);
   // Writes the end record and closes the file.

@@ -253,6 +253,16 @@ class Replayer {
         expect_id(id);
         break;
       }
+      case Tag::SetJoint: {
+        const auto id = read_id<JointId>();
+        from_json("a joint", [&](scene::ObjectReader& f) {
+          const scene::JointFormat* format = scene::joint_format(f.text("type"));
+          if (format == nullptr) scene::fail(f.source(), "/type", "unknown joint type");
+          format->set(world_, id, f, by_slot_);
+          return 0;
+        });
+        break;
+      }
       case Tag::DestroyJoint:
         world_.destroy_joint(read_id<JointId>());
         break;

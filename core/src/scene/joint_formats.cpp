@@ -45,25 +45,25 @@ void write_ends(const Def& def, const BodyIndex& index, nlohmann::json& out) {
   out["spring"] = spring_json(def.spring);
 }
 
-JointId read_ball(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+BallJointDef read_ball(ObjectReader& fields, const std::vector<BodyId>& bodies) {
   BallJointDef def;
   read_ends(fields, bodies, def);
   fields.no_other_keys();
-  return fields.call([&] { return world.create_ball_joint(def); });
+  return def;
 }
 
 void write_ball(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
   write_ends(world.ball_joint(id), index, out);
 }
 
-JointId read_distance(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+DistanceJointDef read_distance(ObjectReader& fields, const std::vector<BodyId>& bodies) {
   DistanceJointDef def;
   read_ends(fields, bodies, def);
   def.rest_length = fields.number("rest_length", def.rest_length);
   def.min_length = fields.number("min_length", def.min_length);
   def.max_length = fields.number("max_length", def.max_length);  // missing: no upper limit
   fields.no_other_keys();
-  return fields.call([&] { return world.create_distance_joint(def); });
+  return def;
 }
 
 void write_distance(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
@@ -158,14 +158,14 @@ nlohmann::json axis_spring_json(const AxisSpring& spring) {
   return {{"spring", spring_json(spring.spring)}, {"target", spring.target}};
 }
 
-JointId read_revolute(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+RevoluteJointDef read_revolute(ObjectReader& fields, const std::vector<BodyId>& bodies) {
   RevoluteJointDef def;
   read_frames(fields, bodies, def);
   def.limit = read_limit(fields);
   def.motor = read_motor(fields, "max_torque", &AngularMotor::max_torque);
   def.spring = read_axis_spring(fields);
   fields.no_other_keys();
-  return fields.call([&] { return world.create_joint(def); });
+  return def;
 }
 
 void write_revolute(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
@@ -176,14 +176,14 @@ void write_revolute(const World& world, JointId id, const BodyIndex& index, nloh
   out["spring"] = axis_spring_json(def.spring);
 }
 
-JointId read_prismatic(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+PrismaticJointDef read_prismatic(ObjectReader& fields, const std::vector<BodyId>& bodies) {
   PrismaticJointDef def;
   read_frames(fields, bodies, def);
   def.limit = read_limit(fields);
   def.motor = read_motor(fields, "max_force", &LinearMotor::max_force);
   def.spring = read_axis_spring(fields);
   fields.no_other_keys();
-  return fields.call([&] { return world.create_joint(def); });
+  return def;
 }
 
 void write_prismatic(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
@@ -194,13 +194,13 @@ void write_prismatic(const World& world, JointId id, const BodyIndex& index, nlo
   out["spring"] = axis_spring_json(def.spring);
 }
 
-JointId read_weld(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+WeldJointDef read_weld(ObjectReader& fields, const std::vector<BodyId>& bodies) {
   WeldJointDef def;
   read_frames(fields, bodies, def);
   def.linear = fields.spring("linear", def.linear);
   def.angular = fields.spring("angular", def.angular);
   fields.no_other_keys();
-  return fields.call([&] { return world.create_joint(def); });
+  return def;
 }
 
 void write_weld(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
@@ -210,13 +210,31 @@ void write_weld(const World& world, JointId id, const BodyIndex& index, nlohmann
   out["angular"] = spring_json(def.angular);
 }
 
+// Creates a joint, or changes one in place, from a Def read by ReadDef.
+template <class Def, Def (*ReadDef)(ObjectReader&, const std::vector<BodyId>&)>
+JointId create_from(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  const Def def = ReadDef(fields, bodies);
+  return fields.call([&] { return world.create_joint(def); });
+}
+
+template <class Def, Def (*ReadDef)(ObjectReader&, const std::vector<BodyId>&)>
+void set_from(World& world, JointId id, ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  const Def def = ReadDef(fields, bodies);
+  fields.call([&] { world.set_joint(id, def); });
+}
+
+#define SOFTSTEP_JOINT_FORMAT(NAME, TYPE, DEF, READ, WRITE) \
+  {NAME, TYPE, create_from<DEF, READ>, WRITE, set_from<DEF, READ>}
+
 constexpr JointFormat kJointFormats[] = {
-    {"ball", JointType::Ball, read_ball, write_ball},
-    {"distance", JointType::Distance, read_distance, write_distance},
-    {"revolute", JointType::Revolute, read_revolute, write_revolute},
-    {"prismatic", JointType::Prismatic, read_prismatic, write_prismatic},
-    {"weld", JointType::Weld, read_weld, write_weld},
+    SOFTSTEP_JOINT_FORMAT("ball", JointType::Ball, BallJointDef, read_ball, write_ball),
+    SOFTSTEP_JOINT_FORMAT("distance", JointType::Distance, DistanceJointDef, read_distance, write_distance),
+    SOFTSTEP_JOINT_FORMAT("revolute", JointType::Revolute, RevoluteJointDef, read_revolute, write_revolute),
+    SOFTSTEP_JOINT_FORMAT("prismatic", JointType::Prismatic, PrismaticJointDef, read_prismatic, write_prismatic),
+    SOFTSTEP_JOINT_FORMAT("weld", JointType::Weld, WeldJointDef, read_weld, write_weld),
 };
+
+#undef SOFTSTEP_JOINT_FORMAT
 
 }  // namespace
 

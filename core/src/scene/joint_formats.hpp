@@ -34,6 +34,8 @@ struct JointFormat {
   JointId (*read)(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies);
   // Writes every field of the joint but "type".
   void (*write)(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out);
+  // Changes joint `id` in place (World::set_joint) to the fields `write` wrote.
+  void (*set)(World& world, JointId id, ObjectReader& fields, const std::vector<BodyId>& bodies);
 };
 
 std::span<const JointFormat> joint_formats();
