@@ -210,7 +210,7 @@ BodyState World::body(BodyId id) const {
   const BodySlot& b = impl_->bodies[body_slot(*impl_, "body", "body", id)];
   return {b.type, b.position, b.orientation,   b.linear_velocity, b.angular_velocity,
           b.mass, b.inertia,  b.gravity_scale, b.linear_damping,  b.angular_damping,
-          b.never_sleep};
+          b.never_sleep, b.force, b.torque};
 }
 
 void World::set_position(BodyId id, const Eigen::Vector3d& position) {
