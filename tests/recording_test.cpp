@@ -260,14 +260,31 @@ TEST(Recording, ForcesAppliedBeforeRecordingAreInItsInitialState) {
   std::filesystem::remove(path);
 }
 
-TEST(Recording, AWorldThatSteppedBeforeRecordingIsNamedAsSuch) {
+// A world that stepped replays (its scene holds the warm-start impulses); one whose ids a
+// scene cannot rebuild (a body destroyed before recording) is named as such at the start.
+TEST(Recording, AWorldThatSteppedReplaysOneWithDestroyedIdsIsNamed) {
+  const std::string stepped = temp_path("stepped_ok");
+  {
+    World world;
+    scenes::ChainOptions chain;
+    chain.links = 5;
+    scenes::build_chain(world, chain);
+    for (int i = 0; i < 10; ++i) world.step(1.0 / 60.0);
+    world.start_recording(stepped);
+    for (int i = 0; i < 5; ++i) world.step(1.0 / 60.0);
+    world.stop_recording();
+  }
+  EXPECT_EQ(replay_recording(stepped).steps, 5);
+  std::filesystem::remove(stepped);
+
   const std::string path = temp_path("stepped");
   {
     World world;
     scenes::ChainOptions chain;
     chain.links = 5;
     scenes::build_chain(world, chain);
-    world.step(1.0 / 60.0);  // warm-start impulses a scene file does not hold
+    world.step(1.0 / 60.0);
+    world.destroy_body(world.create_body(BodyDef{}));  // a generation a scene does not hold
     world.start_recording(path);
     world.step(1.0 / 60.0);
     world.stop_recording();

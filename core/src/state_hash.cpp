@@ -62,9 +62,7 @@ std::uint64_t World::state_hash() const {
     h.value(j.body_b);
     h.matrix(j.local_anchor_a);
     h.matrix(j.local_anchor_b);
-    const std::array<float, kMaxJointImpulses> impulse =
-        w.joints_packed && w.lane_solver->in_lanes(slot) ? w.lane_solver->impulses(slot)
-                                                         : j.impulse;
+    const std::array<float, kMaxJointImpulses> impulse = w.joint_impulses(slot);
     JointKinds::with(j.type, [&]<class Kind>() {
       Kind::hash(h, j);
       for (int k = 0; k < Kind::kImpulses; ++k) h.value(impulse[k]);

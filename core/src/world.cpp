@@ -360,7 +360,7 @@ void replace_joint(World::Impl& w, std::uint32_t slot, JointSlot&& joint) {
   joint.alive = true;
   joint.angle = j.angle;
   const bool packed = w.joints_packed && w.lane_solver->in_lanes(slot);
-  joint.impulse = packed ? w.lane_solver->impulses(slot) : j.impulse;
+  joint.impulse = w.joint_impulses(slot);
   j = std::move(joint);
   // Same kernel and signature: only this lane changes. Otherwise the world re-packs.
   if (!packed || !w.lane_solver->refresh(slot, w.joints, w.settings.specialize)) {
@@ -419,9 +419,7 @@ std::size_t World::joint_count() const {
 JointReading World::joint_reading(JointId id) const {
   const Impl& w = *impl_;
   const JointSlot& j = w.joints[joint_slot(w, "joint_reading", id)];
-  const std::array<float, kMaxJointImpulses> impulse =
-      w.joints_packed && w.lane_solver->in_lanes(id.index) ? w.lane_solver->impulses(id.index)
-                                                           : j.impulse;
+  const std::array<float, kMaxJointImpulses> impulse = w.joint_impulses(id.index);
   JointReading r;
   JointKinds::with(j.type, [&]<class Kind>() { Kind::reading(w, j, impulse.data(), r); });
   if (w.last_substep > 0.0) {

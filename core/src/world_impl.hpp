@@ -208,6 +208,11 @@ struct World::Impl {
   std::vector<double> island_rest;          // per body slot, scratch of update_sleep
   std::vector<std::uint32_t> island_index;  // per body slot, scratch of update_sleep
 
+  // A joint's accumulated impulses, from its lanes while packed, else from its slot.
+  std::array<float, kMaxJointImpulses> joint_impulses(std::uint32_t slot) const {
+    return joints_packed && lane_solver->in_lanes(slot) ? lane_solver->impulses(slot)
+                                                        : joints[slot].impulse;
+  }
   void unpack_joints();    // save impulses to slots and mark for re-pack
   void content_changed();  // bodies or joints to re-list and re-pack, plan to rebuild
   void build_plan();       // packs, lists and plans if anything changed
@@ -231,6 +236,13 @@ struct World::Impl {
   void capture_step_start(float h, double rigid_hertz);
   void capture_before_solve();  // velocities after gravity and damping, the solver's masses
   void capture_solved();        // velocities and impulses after the first sub-step's solve
+};
+
+// The library's own way into a World, for what the API does not set (scene files restoring
+// warm-start impulses, for one).
+struct WorldInternals {
+  static World::Impl& of(World& world) { return *world.impl_; }
+  static const World::Impl& of(const World& world) { return *world.impl_; }
 };
 
 }  // namespace softstep

@@ -186,10 +186,11 @@ class World {
 
   // Writes the world as it is now (a scene file's content) and from then on every call that
   // changes it and every step (dt and the motion hash after it) to a binary file at `path`
-  // (softstep/recording.hpp replays it). Start it before the first step: a scene does not
-  // hold warm-start impulses or sleep state, so a world that has stepped cannot be replayed
-  // bit for bit (the replay says so). Throws std::runtime_error when the file cannot be
-  // written; a recording already running is stopped first.
+  // (softstep/recording.hpp replays it). A world that has stepped can be recorded (its scene
+  // keeps the warm-start impulses), unless it has sleeping islands or destroyed bodies or
+  // joints, which a scene does not hold (the replay says so at its start). Throws
+  // std::runtime_error when the file cannot be written; a recording already running is
+  // stopped first.
   void start_recording(const std::string& path);
   // Ends the file with the world's state_hash and closes it. Nothing when not recording.
   void stop_recording();
@@ -200,6 +201,7 @@ class World {
   struct Impl;
 
  private:
+  friend struct WorldInternals;  // the library's own files (world_impl.hpp)
   std::unique_ptr<Impl> impl_;
 };
 

@@ -125,9 +125,9 @@ class Replayer {
           name_ +
           ": its initial scene does not load into the world that was recorded (state hash " +
           hex(world_.state_hash()) + " against " + hex(start_hash) +
-          "): the recording was started on a world that had stepped or destroyed bodies, whose "
-          "warm-start impulses, sleep state or ids a scene does not hold; start recording before "
-          "the first step");
+          "): the recording was started on a world with sleeping islands or destroyed bodies or "
+          "joints, whose sleep or ids a scene does not hold; start recording before the first "
+          "step");
     for (BodyId id : world_.body_ids()) remember(id);
     if (hooks_.on_start) hooks_.on_start(world_);
   }

@@ -7,6 +7,7 @@
 #include "joint_formats.hpp"
 #include "json_reader.hpp"
 #include "settings_format.hpp"
+#include "solver_state.hpp"
 
 namespace softstep {
 
@@ -46,11 +47,14 @@ World load_scene_text(const std::string& json_text, const std::string& name) {
   const json& bodies = top.array("bodies");
   std::vector<BodyId> ids;
   ids.reserve(bodies.size());
+  std::vector<double> sleep_times;  // set last: every call on a body starts its rest anew
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     ObjectReader fields(source, bodies[i], element_path(top, "bodies", i));
     const scene::PendingLoads loads = scene::read_pending_loads(fields);
+    sleep_times.push_back(scene::read_sleep_time(fields));
     const BodyDef def = scene::read_body(fields);
     ids.push_back(fields.call([&] { return world.create_body(def); }));
+    scene::keep_exact_orientation(world, ids.back(), def.orientation);
     // At the centre, so the force adds no moment: the torque saved already holds them all.
     if (!loads.force.isZero(0.0))
       fields.call([&] { world.apply_force(ids.back(), loads.force, def.position); });
@@ -69,9 +73,13 @@ World load_scene_text(const std::string& json_text, const std::string& name) {
         known += (known.empty() ? "" : ", ") + std::string(f.name);
       scene::fail(source, fields.path_of("type"), "unknown joint type (known: " + known + ")");
     }
-    format->read(world, fields, ids);
+    const scene::JointStateReader state(fields);
+    state.apply(world, format->read(world, fields, ids));
   }
+  const scene::json& solver_state = top.object("solver_state");
   top.no_other_keys();
+  for (std::size_t i = 0; i < ids.size(); ++i) scene::apply_sleep_time(world, ids[i], sleep_times[i]);
+  scene::read_world_state(source, solver_state, world);
   return world;
 }
 

@@ -6,6 +6,7 @@
 #include "body_format.hpp"
 #include "joint_formats.hpp"
 #include "settings_format.hpp"
+#include "solver_state.hpp"
 #include "softstep/scene_file.hpp"
 
 namespace softstep {
@@ -30,6 +31,7 @@ std::string save_scene_text(const World& world) {
     const BodyState state = world.body(id);
     nlohmann::json body = scene::body_json(scene::body_def(state));
     scene::write_pending_loads(state, body);
+    scene::write_body_state(world, id, body);
     body_lines.push_back(body.dump());
   }
 
@@ -39,11 +41,14 @@ std::string save_scene_text(const World& world) {
     const scene::JointFormat& format = scene::joint_format(world.joint_type(id));
     nlohmann::json j = {{"type", format.name}};
     format.write(world, id, index, j);
+    scene::write_joint_state(world, id, j);
     joint_lines.push_back(j.dump());
   }
 
   std::string out = "{\n  \"softstep_scene\": 1,\n  \"settings\": " +
                     scene::settings_json(world.settings()).dump() + ",\n";
+  const std::string state = scene::world_state_text(world);
+  if (!state.empty()) out += "  \"solver_state\": " + state + ",\n";
   append_list(out, "bodies", body_lines, false);
   append_list(out, "joints", joint_lines, true);
   return out + "}\n";

@@ -1,0 +1,103 @@
+#include "solver_state.hpp"
+
+#include <cmath>
+
+#include "joints/joint_registry.hpp"
+#include "world_impl.hpp"
+
+namespace softstep::scene {
+
+namespace {
+
+int impulses_of(JointType type) {
+  return JointKinds::with(type, []<class Kind>() { return Kind::kImpulses; });
+}
+
+}  // namespace
+
+std::string world_state_text(const World& world) {
+  const World::Impl& w = WorldInternals::of(world);
+  if (w.last_substep == 0.0) return {};
+  return json{{"last_substep", w.last_substep},
+              {"joints_without_history", w.joints_without_history}}
+      .dump();
+}
+
+void read_world_state(const Source& source, const json& solver_state, World& world) {
+  ObjectReader fields(source, solver_state, "/solver_state");
+  const double h = fields.number("last_substep", 0.0);
+  if (!(std::isfinite(h) && h >= 0.0))
+    fail(source, fields.path_of("last_substep"), "expected a finite time >= 0 (s)");
+  const bool fresh_joints = fields.boolean("joints_without_history", true);
+  fields.no_other_keys();
+  if (h == 0.0) return;
+  World::Impl& w = WorldInternals::of(world);
+  w.last_substep = h;
+  w.joints_without_history = fresh_joints;
+}
+
+void write_joint_state(const World& world, JointId id, json& joint) {
+  const World::Impl& w = WorldInternals::of(world);
+  const JointSlot& slot = w.joints[id.index];
+  const std::array<float, kMaxJointImpulses> impulse = w.joint_impulses(id.index);
+  const int n = impulses_of(slot.type);
+  bool any = false;
+  for (int k = 0; k < n; ++k) any = any || impulse[static_cast<std::size_t>(k)] != 0.0f;
+  if (any) {
+    json list = json::array();
+    for (int k = 0; k < n; ++k) list.push_back(impulse[static_cast<std::size_t>(k)]);
+    joint["impulse"] = std::move(list);
+  }
+  if (slot.angle != 0.0) joint["unwrapped_angle"] = slot.angle;
+}
+
+void write_body_state(const World& world, BodyId id, json& body) {
+  const double rest = WorldInternals::of(world).bodies[id.index].sleep_time;
+  if (rest != 0.0) body["sleep_time"] = rest;
+}
+
+JointStateReader::JointStateReader(ObjectReader& fields)
+    : fields_(fields),
+      impulse_(fields.array("impulse", /*optional=*/true)),
+      angle_(fields.number("unwrapped_angle", 0.0)) {
+  for (std::size_t k = 0; k < impulse_.size(); ++k) {
+    // A float, as the solver keeps it: a double beyond float's range would become infinite.
+    if (!impulse_[k].is_number() || !std::isfinite(impulse_[k].get<double>()) ||
+        std::abs(impulse_[k].get<double>()) > 3.0e38)
+      fail(fields_.source(), fields_.path_of("impulse") + "/" + std::to_string(k),
+           "expected a finite number (N s or N m s) within float's range");
+  }
+  if (!std::isfinite(angle_))
+    fail(fields_.source(), fields_.path_of("unwrapped_angle"), "expected a finite angle (rad)");
+}
+
+void JointStateReader::apply(World& world, JointId id) const {
+  World::Impl& w = WorldInternals::of(world);
+  JointSlot& slot = w.joints[id.index];
+  const std::size_t n = static_cast<std::size_t>(impulses_of(slot.type));
+  if (impulse_.size() > n)
+    fail(fields_.source(), fields_.path_of("impulse"),
+         "a " + std::string(joint_type_name(slot.type)) + " joint keeps " + std::to_string(n) +
+             " impulses, the file gives " + std::to_string(impulse_.size()));
+  // A new joint is not in the lanes yet: the next pack takes its impulses from the slot.
+  for (std::size_t k = 0; k < impulse_.size(); ++k)
+    slot.impulse[k] = static_cast<float>(impulse_[k].get<double>());
+  slot.angle = angle_;
+}
+
+void keep_exact_orientation(World& world, BodyId id, const Quaternion& saved) {
+  WorldInternals::of(world).bodies[id.index].orientation = saved;
+}
+
+double read_sleep_time(ObjectReader& fields) {
+  const double t = fields.number("sleep_time", 0.0);
+  if (!(std::isfinite(t) && t >= 0.0))
+    fail(fields.source(), fields.path_of("sleep_time"), "expected a finite time >= 0 (s)");
+  return t;
+}
+
+void apply_sleep_time(World& world, BodyId id, double sleep_time) {
+  WorldInternals::of(world).bodies[id.index].sleep_time = sleep_time;
+}
+
+}  // namespace softstep::scene
