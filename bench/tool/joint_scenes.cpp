@@ -103,7 +103,7 @@ SceneRun build_joint_scene(World& world, const SceneChoice& c) {
     }
     run.joints.insert(run.joints.end(), built.ropes.begin(), built.ropes.end());
     run.description = "ragdoll: " + std::to_string(c.ragdoll.count) +
-                      " ragdolls of 16 bodies, 10 swing-twist + 6 revolute joints each, on ropes";
+                      " ragdolls of 16 bodies, 9 swing-twist + 6 revolute joints each, on ropes";
     run.reach = c.ragdoll.rope_length + 1.0;  // the rope, and the legs below the pelvis
     run.limit_violation_deg = [&world, built] {
       return scenes::ragdoll_limit_violation(world, built).worst();
