@@ -19,14 +19,9 @@ namespace {
 using test::kDt;
 constexpr double kPi = std::numbers::pi;
 
-// As in revolute_test.cpp: a rigid row (60 Hz at 4 sub-steps of 1/60 s) carrying a steady
-// load that accelerates its row at alpha sags alpha / omega_r^2; a one-sided limit row,
-// speculative while inside, lets through at most one sub-step's acceleration, alpha h^2. The
-// bound takes twice the sum, for the Gauss-Seidel coupling with the joint's other rows.
-constexpr double kOmegaRigid = 2.0 * kPi * 60.0;
-double rigid_row_bound(double alpha, double h) {
-  return 2.0 * (alpha * h * h + alpha / (kOmegaRigid * kOmegaRigid));
-}
+// A rigid row under a load that accelerates it at alpha leaves its limit by at most
+// test::rigid_row_bound(alpha, h) (joint_test_support.hpp: the sag and one sub-step's travel).
+using test::rigid_row_bound;
 
 // A limb: 2 kg, inertia 0.2 about x and y, 0.05 about its own (twist) axis z (or 0.2: a
 // spinning body with an isotropic inertia has no gyroscopic torque), hinged at its centre to
