@@ -132,6 +132,17 @@ TEST(Recording, AngularJointsAndAppliedForcesReplayBitForBit) {
   weld.frame_b = wf.b;
   weld.angular = Spring::soft(6.0, 0.5);
   const JointId welded = world.create_joint(weld);
+  SwingTwistJointDef shoulder;
+  shoulder.body_a = g;
+  shoulder.body_b = boxes[2];
+  const JointFrames stf = frames_at(world, g, boxes[2], {1.5, 0.0, 0.0}, x);
+  shoulder.frame_a = stf.a;
+  shoulder.frame_b = stf.b;
+  shoulder.cone = {true, 0.8, 0.5};
+  shoulder.twist = {true, -0.4, 0.6};
+  shoulder.spring = {Spring::soft(1.5, 0.2), Quaternion(Eigen::AngleAxisd(0.2, z))};
+  shoulder.motor = {true, 0.3};
+  const JointId shouldered = world.create_joint(shoulder);
   for (int i = 0; i < 10; ++i) {
     world.apply_force(boxes[2], {0.0, 3.0, 1.0}, {1.6, 0.0, 0.1});
     world.apply_torque(boxes[1], {0.0, 0.5, 0.0});
@@ -142,11 +153,13 @@ TEST(Recording, AngularJointsAndAppliedForcesReplayBitForBit) {
   world.set_joint(welded, weld);
   hinge.motor.speed = -2.0;
   world.set_joint(hinged, hinge);
+  shoulder.cone.half_angle_y = 0.3;
+  world.set_joint(shouldered, shoulder);
   world.step(1.0 / 60.0);
   world.stop_recording();
   const ReplayReport report = replay_recording(path, [](World&, long, double) {});
   EXPECT_EQ(report.steps, 11);
-  EXPECT_EQ(report.calls, 3 + 3 + 20 + 2);
+  EXPECT_EQ(report.calls, 3 + 4 + 20 + 3);
   EXPECT_EQ(report.state_hash, world.state_hash());
   std::filesystem::remove(path);
 }

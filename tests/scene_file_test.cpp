@@ -16,6 +16,7 @@
 #include "scenes/chain_scene.hpp"
 #include "scenes/grid_scene.hpp"
 #include "scenes/joint_zoo.hpp"
+#include "scenes/ragdoll_scene.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
@@ -140,6 +141,8 @@ std::vector<BuiltScene> built_scenes() {
   scenes::JointZooOptions zoo;
   zoo.chains = scenes::kZooJointKinds;
   zoo.links = 3;
+  scenes::RagdollOptions ragdolls;
+  ragdolls.count = 2;
   return {
       {"chain", {}, [=](World& w) { scenes::build_chain(w, chain); }},
       {"soft_hanging_distance_chain", {}, [=](World& w) { scenes::build_chain(w, soft_chain); }},
@@ -148,6 +151,8 @@ std::vector<BuiltScene> built_scenes() {
       {"bridge", {}, [=](World& w) { scenes::build_bridge(w, bridge); }},
       {"every_feature", unusual_settings(), build_every_feature},
       {"joint_zoo", {}, [=](World& w) { scenes::build_joint_zoo(w, zoo); }},
+      // Swing-twist joints with elliptical cones, twist limits and friction; hinges; ropes.
+      {"ragdolls", {}, [=](World& w) { scenes::build_ragdolls(w, ragdolls); }},
   };
 }
 

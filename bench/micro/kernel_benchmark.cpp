@@ -1,7 +1,8 @@
 // Each joint kernel alone (prepare, warm start, solve, relax), at scalar, SSE (4) and AVX2
 // (8) width, on chains of 10,000 and 100,000 links and on 1,000 chains of 100 links. The
 // angular types run twice: with their locks only, and with every part of their free axis
-// (limit, motor, spring), so that the difference is what those parts cost. Uses only
+// (limit, motor, spring), so that the difference is what those parts cost. The swing-twist
+// joint runs with a ragdoll's parts (cone, twist limits, friction) and with all of them. Uses only
 // simd/ and graph_coloring/: the layers the issue asks to benchmark alone. The figure to
 // read is ns_per_row: time per constraint row for one pass of the kernel over all joints.
 //
@@ -15,6 +16,7 @@
 #include "softstep/simd/distance_joint_kernel.hpp"
 #include "softstep/simd/prismatic_joint_kernel.hpp"
 #include "softstep/simd/revolute_joint_kernel.hpp"
+#include "softstep/simd/swing_twist_joint_kernel.hpp"
 #include "softstep/simd/weld_joint_kernel.hpp"
 
 namespace softstep::simd {
@@ -91,6 +93,17 @@ Packed<Group, W> pack_chains(int total_links, int chain_length) {
       if constexpr (requires { g.frame_a; }) {  // frames at identity: hinge or slide along z
         g.frame_a[3][lane] = g.frame_b[3][lane] = 1.0f;
       }
+      if constexpr (requires { g.inv_cone_x_sq; }) {  // B leaning 0.3 rad in a 0.5 rad cone
+        g.frame_b[0][lane] = 0.1494381f;                // sin(0.15): turned about x
+        g.frame_b[3][lane] = 0.9887711f;
+        g.target_a[3][lane] = 1.0f;
+        g.inv_cone_x_sq[lane] = g.inv_cone_y_sq[lane] = 16.32f;  // 1 / sin^2(0.25)
+        g.twist_lower[lane] = -0.5f;
+        g.twist_upper[lane] = 0.5f;
+        g.motor_max[lane] = 1.0f;
+        g.spring.hertz[lane] = 2.0f;
+        g.spring.zeta[lane] = 0.5f;
+      }
       if constexpr (requires { g.axis; }) {  // limits around 0, a motor and a spring
         g.axis.lower_gap[lane] = 0.5f;
         g.axis.upper_gap[lane] = 0.5f;
@@ -151,6 +164,14 @@ constexpr std::uint32_t kAllAxisParts = kAxisLimit | kAxisMotor | kAxisSpring;
 SOFTSTEP_ANGULAR_KERNEL(RevoluteJointGroup, revolute, sig == 0 ? 5.0 : 9.0);
 SOFTSTEP_ANGULAR_KERNEL(PrismaticJointGroup, prismatic, sig == 0 ? 5.0 : 9.0);
 SOFTSTEP_ANGULAR_KERNEL(WeldJointGroup, weld, (void(sig), 6.0));
+// Swing-twist: point 3, cone 1, twist 2, spring 3, friction 3.
+SOFTSTEP_ANGULAR_KERNEL(SwingTwistJointGroup, swing_twist,
+                        3.0 + ((sig & kSwingCone) ? 1 : 0) + ((sig & kTwistLimit) ? 2 : 0) +
+                            ((sig & kSwingTwistSpring) ? 3 : 0) +
+                            ((sig & kSwingTwistMotor) ? 3 : 0));
+// A ragdoll's joint: cone, twist limits and friction (9 rows); and every part (12).
+constexpr std::uint32_t kRagdollParts = kSwingCone | kTwistLimit | kSwingTwistMotor;
+constexpr std::uint32_t kAllSwingTwistParts = kRagdollParts | kSwingTwistSpring;
 
 // F: the kernel variant of ball and distance joints. Every lane of these chains is rigid with
 // no limit row, so the general kernel (the default) and the rigid variant compute the same
@@ -214,6 +235,20 @@ SOFTSTEP_KERNEL_BENCH(WeldJointGroup, Relax);
       ->Apply(scenes)
 SOFTSTEP_ALL_PARTS_BENCH(RevoluteJointGroup, Solve);
 SOFTSTEP_ALL_PARTS_BENCH(PrismaticJointGroup, Solve);
+
+#define SOFTSTEP_SWING_TWIST_BENCH(STAGE, PARTS, SUFFIX)                                       \
+  BENCHMARK(run<float, SwingTwistJointGroup, Stage::STAGE, kGeneralKernel, PARTS>)            \
+      ->Name("SwingTwistJointGroup/" #STAGE "/scalar" SUFFIX)                                  \
+      ->Apply(scenes);                                                                         \
+  BENCHMARK(run<Sse, SwingTwistJointGroup, Stage::STAGE, kGeneralKernel, PARTS>)              \
+      ->Name("SwingTwistJointGroup/" #STAGE "/sse" SUFFIX)                                     \
+      ->Apply(scenes);                                                                         \
+  BENCHMARK(run<Avx2, SwingTwistJointGroup, Stage::STAGE, kGeneralKernel, PARTS>)             \
+      ->Name("SwingTwistJointGroup/" #STAGE "/avx2" SUFFIX)                                    \
+      ->Apply(scenes)
+SOFTSTEP_SWING_TWIST_BENCH(Solve, kRagdollParts, "");
+SOFTSTEP_SWING_TWIST_BENCH(Relax, kRagdollParts, "");
+SOFTSTEP_SWING_TWIST_BENCH(Solve, kAllSwingTwistParts, "/all_parts");
 
 // The rigid variant of the same kernels (no per-lane spring switch, no limit rows).
 constexpr JointFeatures kRigid{RowKind::Rigid, false, false};

@@ -30,7 +30,7 @@ std::function<double()> worst_stretch(const World& world, std::vector<BodyId> st
 }  // namespace
 
 bool is_joint_scene(const std::string& scene) {
-  return scene == "hinge-chain" || scene == "prismatic-stack";
+  return scene == "hinge-chain" || scene == "prismatic-stack" || scene == "ragdoll";
 }
 
 void add_joint_scene_options(CLI::App& cmd, SceneChoice& c) {
@@ -50,6 +50,9 @@ void add_joint_scene_options(CLI::App& cmd, SceneChoice& c) {
   cmd.add_option("--height", c.stack.height, "prismatic-stack: cubes per column")
       ->check(whole_in(1, 10000000))
       ->capture_default_str();
+  cmd.add_option("--count", c.ragdoll.count, "ragdoll: ragdolls (16 bodies each)")
+      ->check(whole_in(1, 10000000))
+      ->capture_default_str();
 }
 
 void finish_joint_scene_options(const CLI::App& cmd, SceneChoice& c) {
@@ -59,6 +62,7 @@ void finish_joint_scene_options(const CLI::App& cmd, SceneChoice& c) {
   };
   for (const char* flag : {"--limit", "--motor-torque", "--motor-speed"}) only_for(flag, "hinge-chain");
   for (const char* flag : {"--columns", "--height"}) only_for(flag, "prismatic-stack");
+  only_for("--count", "ragdoll");
   c.hinge.links = c.chain.links;
   c.hinge.chains = c.chain.chains;
   if (cmd.count("--limit") > 0) {
@@ -90,6 +94,20 @@ SceneRun build_joint_scene(World& world, const SceneChoice& c) {
     run.description += o.spring.spring.is_free() ? ", no spring" : ", " + c.spring_text;
     run.reach = o.link_spacing * o.links;
     run.stretch_ratio = worst_stretch(world, built.anchors, built.links, run.reach);
+  } else if (c.scene == "ragdoll") {
+    const scenes::RagdollScene built = scenes::build_ragdolls(world, c.ragdoll);
+    for (const scenes::Ragdoll& r : built.ragdolls) {
+      run.bodies.insert(run.bodies.end(), r.bodies.begin(), r.bodies.end());
+      run.joints.insert(run.joints.end(), r.swing_twists.begin(), r.swing_twists.end());
+      run.joints.insert(run.joints.end(), r.hinges.begin(), r.hinges.end());
+    }
+    run.joints.insert(run.joints.end(), built.ropes.begin(), built.ropes.end());
+    run.description = "ragdoll: " + std::to_string(c.ragdoll.count) +
+                      " ragdolls of 16 bodies, 9 swing-twist + 6 revolute joints each, on ropes";
+    run.reach = c.ragdoll.rope_length + 1.0;  // the rope, and the legs below the pelvis
+    run.limit_violation_deg = [&world, built] {
+      return scenes::ragdoll_limit_violation(world, built).worst();
+    };
   } else {
     const scenes::PrismaticStackOptions& o = c.stack;
     const scenes::PrismaticStackScene built = scenes::build_prismatic_stack(world, o);

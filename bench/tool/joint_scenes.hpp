@@ -1,4 +1,4 @@
-// The scenes of the angular joints in the tool: `hinge-chain` and `prismatic-stack`. Kept
+// The scenes of the angular joints in the tool: `hinge-chain`, `prismatic-stack` and `ragdoll`. Kept
 // apart from scene_options.cpp so that file only names them: their flags and their builders
 // live here.
 #pragma once

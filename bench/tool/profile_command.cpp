@@ -110,7 +110,7 @@ int profile_command(ProfileOptions o) {
   const double dt = 1.0 / 60.0;
   StepSamples samples;
   samples.tracing = !trace_path.empty();
-  double worst_error_run = 0.0;
+  double worst_error_run = 0.0, worst_limit_run = 0.0;
   const long error_every = std::max(1L, steps / 100);  // ~100 samples, outside the timed step
   const auto run_start = std::chrono::steady_clock::now();
   {
@@ -124,6 +124,8 @@ int profile_command(ProfileOptions o) {
                   std::chrono::duration<double, std::micro>(t0 - run_start).count());
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
+        if (run.limit_violation_deg)
+          worst_limit_run = std::max(worst_limit_run, run.limit_violation_deg());
       }
       bar.update(i + 1);
     }
@@ -140,6 +142,7 @@ int profile_command(ProfileOptions o) {
                             (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));
   const StageTimes stage_median = stage_medians(samples.stage_ms);
   const double stretch = run.stretch_ratio ? run.stretch_ratio() : kNaN;
+  const double limit_now = run.limit_violation_deg ? run.limit_violation_deg() : kNaN;
 
   std::printf("scene            %s\n", run.description.c_str());
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
@@ -175,6 +178,12 @@ int profile_command(ProfileOptions o) {
         "column)\n",
         stretch);
   }
+  if (run.limit_violation_deg) {
+    std::printf(
+        "limit violation  %.4g deg after the last step; worst over the run %.4g deg (cone, "
+        "twist or hinge limit)\n",
+        limit_now, worst_limit_run);
+  }
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {
@@ -201,6 +210,8 @@ int profile_command(ProfileOptions o) {
                               {"rms_joint_error_m", errors.rms},
                               {"max_joint_error_run_m", worst_error_run},
                               {"stretch_ratio", stretch},
+                              {"limit_violation_deg", limit_now},
+                              {"limit_violation_run_deg", run.limit_violation_deg ? worst_limit_run : kNaN},
                               {"plan", plan_json(world.step_plan())},
                               {"awake_bodies", world.step_plan().awake_bodies},
                               {"sleeping_islands", world.step_plan().sleeping_islands},

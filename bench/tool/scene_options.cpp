@@ -32,6 +32,10 @@ const char* const kSceneHelp =
     "  prismatic-stack  --height H 1 kg cubes per column (default 1000 columns of 10), each on\n"
     "          a vertical slider to the one below, on springs of 4 Hz (or --hertz) within\n"
     "          -0.2 .. +0.1 m of their 0.5 m spacing.\n"
+    "  ragdoll --count N ragdolls of 16 bodies (swing-twist spine, neck, shoulders, wrists and\n"
+    "          hips, revolute elbows, knees and ankles, anatomical limits, joint friction),\n"
+    "          dropped in a T-pose from 10 m onto a 1 m rope tied to the pelvis; reports the\n"
+    "          worst cone, twist or hinge-limit violation in degrees.\n"
     "Joints are rigid unless --hertz gives them springs.";
 
 bool is_recording_file(const std::string& path) {
@@ -42,17 +46,17 @@ bool is_recording_file(const std::string& path) {
 
 void add_scene_options(CLI::App& cmd, SceneChoice& c) {
   c.chain.links = 10000;
-  cmd.add_option("scene", c.scene, "the scene: chain, grid, bridge, hinge-chain, prismatic-stack or a scene file")
+  cmd.add_option("scene", c.scene, "the scene: chain, grid, bridge, hinge-chain, prismatic-stack, ragdoll or a scene file")
       ->check(CLI::Validator(
           [](std::string& name) -> std::string {
             if (name == "chain" || name == "grid" || name == "bridge" || is_joint_scene(name) ||
                 std::filesystem::is_regular_file(name))
               return {};
             return "'" + name +
-                   "' is neither a scene (chain, grid, bridge, hinge-chain, prismatic-stack) nor "
-                   "a scene file";
+                   "' is neither a scene (chain, grid, bridge, hinge-chain, prismatic-stack, "
+                   "ragdoll) nor a scene file";
           },
-          "chain|grid|bridge|hinge-chain|prismatic-stack|FILE"))
+          "chain|grid|bridge|hinge-chain|prismatic-stack|ragdoll|FILE"))
       ->capture_default_str();
   cmd.add_option("--links", c.chain.links, "chain, hinge-chain: links per chain")
       ->check(whole_in(1, 100000000))

@@ -11,6 +11,7 @@
 #include "scenes/grid_scene.hpp"
 #include "scenes/hinge_chain.hpp"
 #include "scenes/prismatic_stack.hpp"
+#include "scenes/ragdoll_scene.hpp"
 #include "tool/arguments.hpp"
 
 namespace CLI {
@@ -23,12 +24,13 @@ namespace softstep::tool {
 extern const char* const kSceneHelp;
 
 struct SceneChoice {
-  std::string scene = "chain";  // chain, grid, bridge, hinge-chain, prismatic-stack, or a scene file
+  std::string scene = "chain";  // chain, grid, bridge, hinge-chain, prismatic-stack, ragdoll, or a scene file
   scenes::ChainOptions chain;
   scenes::GridOptions grid;
   scenes::BridgeOptions bridge;
   scenes::HingeChainOptions hinge;     // tool/joint_scenes.cpp
   scenes::PrismaticStackOptions stack;
+  scenes::RagdollOptions ragdoll;
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
   // Parsed straight into; turned into the scenes' springs and masses once parsing is complete.
   double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
@@ -59,6 +61,9 @@ struct SceneRun {
   // How far below its start the lowest body could ever hang, m (the potential-energy datum
   // of the sweep's energy drift). A scene file: the diagonal of its bodies' bounding box.
   double reach = 0.0;
+  // The worst joint-limit violation now, degrees (a cone, twist or hinge limit), for the
+  // scenes whose limits the tool knows (ragdoll); empty otherwise.
+  std::function<double()> limit_violation_deg;
 };
 
 // True when the file starts with a recording's signature (a scene file is JSON).

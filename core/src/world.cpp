@@ -41,6 +41,8 @@ const char* joint_type_name(JointType type) {
       return "prismatic";
     case JointType::Weld:
       return "weld";
+    case JointType::SwingTwist:
+      return "swing_twist";
   }
   return "?";
 }

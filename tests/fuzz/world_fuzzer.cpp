@@ -111,6 +111,18 @@ Motor motor(FuzzedDataProvider& in) {
   return m;
 }
 
+// The swing-twist joint's limits, spring and friction: random, sometimes out of range.
+void swing_twist_parts(FuzzedDataProvider& in, softstep::SwingTwistJointDef& d) {
+  d.cone.enabled = in.ConsumeBool();
+  d.cone.half_angle_x = value(in);  // <= 0 or > pi: rejected
+  d.cone.half_angle_y = in.ConsumeBool() ? d.cone.half_angle_x : value(in);
+  d.twist = limit(in);
+  d.spring.spring = spring(in);
+  d.spring.target = softstep::Quaternion(value(in), value(in), value(in), value(in));
+  d.motor.enabled = in.ConsumeBool();
+  d.motor.max_torque = value(in);
+}
+
 // Changes one part of a revolute or prismatic definition (or a weld's springs or frames).
 template <class Def>
 void mutate(FuzzedDataProvider& in, Def& d) {
@@ -301,11 +313,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           }
           break;
         }
-        case 10: {  // a revolute, prismatic or weld joint with random controls
+        case 10: {  // a revolute, prismatic, weld or swing-twist joint with random controls
           if (joints.size() >= 48) break;
           const BodyId a = pick(in, bodies);
           const BodyId b = pick(in, bodies);
-          const int type = in.ConsumeIntegralInRange<int>(0, 2);
+          const int type = in.ConsumeIntegralInRange<int>(0, 3);
           if (type == 0) {
             softstep::RevoluteJointDef j;
             j.body_a = a;
@@ -323,6 +335,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             j.limit = limit(in);
             j.motor = motor<softstep::LinearMotor>(in);
             j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
+            joints.push_back(world.create_joint(j));
+          } else if (type == 3) {
+            softstep::SwingTwistJointDef j;
+            j.body_a = a;
+            j.body_b = b;
+            frames(in, world, a, b, j.frame_a, j.frame_b);
+            swing_twist_parts(in, j);
             joints.push_back(world.create_joint(j));
           } else {
             softstep::WeldJointDef j;
@@ -354,6 +373,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             case softstep::JointType::Weld: {
               auto d = world.joint_def<softstep::WeldJointDef>(id);
               mutate(in, d);
+              world.set_joint(id, d);
+              break;
+            }
+            case softstep::JointType::SwingTwist: {
+              auto d = world.joint_def<softstep::SwingTwistJointDef>(id);
+              if (in.ConsumeBool()) {
+                d.frame_b = frame(in);
+              } else {
+                swing_twist_parts(in, d);
+              }
               world.set_joint(id, d);
               break;
             }

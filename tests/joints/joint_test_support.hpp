@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <vector>
 
 #include "softstep/softstep.hpp"
@@ -25,6 +26,18 @@ inline Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& size) {
 // joint's off-axis torques to keep turning about the hinge).
 inline Eigen::Matrix3d turned(const Eigen::Matrix3d& inertia, const Eigen::Matrix3d& rotation) {
   return rotation * inertia * rotation.transpose();
+}
+
+// A rigid row is solved as a spring of rigid_hertz (60 Hz, capped at 1/(4 h): 60 Hz at 4
+// sub-steps of 1/60 s) and relaxed without bias. Carrying a steady load L on its effective
+// mass m_eff (alpha = L / m_eff) it sags alpha / omega_r^2; a one-sided limit row,
+// speculative while inside, lets through at most one sub-step's acceleration, alpha h^2,
+// before it acts. The bound takes twice the sum, for the Gauss-Seidel coupling with the
+// joint's other rows. An angular row's m_eff is the inertia about the body's centre along
+// the axis (1 / (a . I^-1 a) with A static), not about the joint.
+inline constexpr double kOmegaRigid = 2.0 * std::numbers::pi * 60.0;
+inline double rigid_row_bound(double alpha, double h) {
+  return 2.0 * (alpha * h * h + alpha / (kOmegaRigid * kOmegaRigid));
 }
 
 inline BodyId static_body(World& world, const Eigen::Vector3d& position = Eigen::Vector3d::Zero()) {

@@ -1,4 +1,4 @@
-// Bad input to the revolute, prismatic and weld joints (create_joint, set_joint, joint_def,
+// Bad input to the revolute, prismatic, weld and swing-twist joints (create_joint, set_joint, joint_def,
 // frames_at) is rejected with an InvalidArgument naming the field and showing the value, and
 // the world is left exactly as it was (state_hash): the house style of validation_test.cpp.
 #include <gtest/gtest.h>
@@ -19,12 +19,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Fixture {
   World world;
   BodyId ground, a, b, gone;
-  JointId revolute, prismatic, weld;
+  JointId revolute, prismatic, weld, swing_twist;
 };
 
 // A world with one joint of each type, stepped so that impulses and poses are non-trivial.
 Fixture make_world() {
-  Fixture f{World(), {}, {}, {}, {}, {}, {}, {}};
+  Fixture f{World(), {}, {}, {}, {}, {}, {}, {}, {}};
   f.ground = test::static_body(f.world);
   f.a = test::dynamic_body(f.world, {1, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
   f.b = test::dynamic_body(f.world, {2, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
@@ -54,6 +54,16 @@ Fixture make_world() {
   w.frame_b = fb.b;
   w.angular = Spring::soft(3.0, 0.1);
   f.weld = f.world.create_joint(w);
+  SwingTwistJointDef st;
+  st.body_a = f.a;
+  st.body_b = f.b;
+  st.frame_a = fb.a;
+  st.frame_b = fb.b;
+  st.cone = {true, 0.6, 0.4};
+  st.twist = {true, -0.5, 0.5};
+  st.spring.spring = Spring::soft(2.0, 0.3);
+  st.motor = {true, 0.2};
+  f.swing_twist = f.world.create_joint(st);
   for (int i = 0; i < 3; ++i) f.world.step(1.0 / 60.0);
   return f;
 }
@@ -158,6 +168,8 @@ TEST(JointValidation, AnchorsAndChangedBodiesNamedAsTheCallerSpellsThem) {
   expect_anchor_and_body_change_named<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute);
   expect_anchor_and_body_change_named<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic);
   expect_anchor_and_body_change_named<WeldJointDef>("WeldJointDef", &Fixture::weld);
+  expect_anchor_and_body_change_named<SwingTwistJointDef>("SwingTwistJointDef",
+                                                          &Fixture::swing_twist);
 }
 
 TEST(JointValidation, RevoluteFrames) {
@@ -168,6 +180,9 @@ TEST(JointValidation, PrismaticFrames) {
 }
 TEST(JointValidation, WeldFrames) {
   expect_frame_rejections<WeldJointDef>("WeldJointDef", &Fixture::weld);
+}
+TEST(JointValidation, SwingTwistFrames) {
+  expect_frame_rejections<SwingTwistJointDef>("SwingTwistJointDef", &Fixture::swing_twist);
 }
 
 // Limits, motors and springs along the free axis (revolute and prismatic alike).
@@ -239,6 +254,39 @@ TEST(JointValidation, WeldSprings) {
         "angular.damping_ratio", "-0.5");
 }
 
+// The cone's half-angles in (0, pi], the twist limit within [-pi, pi], the orientation spring
+// soft or free towards a usable quaternion, the friction's torque >= 0.
+TEST(JointValidation, SwingTwistLimitsSpringAndFriction) {
+  using Mutate = std::function<void(Fixture&, SwingTwistJointDef&)>;
+  const auto check = [](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<SwingTwistJointDef>(m, &Fixture::swing_twist, "SwingTwistJointDef." + field,
+                                            value);
+  };
+  check([](Fixture&, SwingTwistJointDef& d) { d.cone.half_angle_x = 0.0; }, "cone.half_angle_x",
+        "0");
+  check([](Fixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = 3.5; }, "cone.half_angle_y",
+        "3.5");
+  check([](Fixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = kNan; }, "cone.half_angle_y",
+        "nan");
+  check([](Fixture&, SwingTwistJointDef& d) { d.cone = {false, kInf, 0.5}; }, "cone.half_angle_x",
+        "inf");
+  check([](Fixture&, SwingTwistJointDef& d) { d.twist = {true, 0.5, -0.25}; }, "twist.lower",
+        "upper (-0.25)");
+  check([](Fixture&, SwingTwistJointDef& d) { d.twist = {true, -4.0, 0.5}; }, "twist.lower", "-4");
+  check([](Fixture&, SwingTwistJointDef& d) { d.twist = {true, -0.5, kNan}; }, "twist.upper",
+        "nan");
+  check([](Fixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::rigid(); },
+        "spring.spring.hertz", "inf");
+  check([](Fixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::soft(2.0, -1.0); },
+        "spring.spring.damping_ratio", "-1");
+  check([](Fixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(0.0, 0.0, 0.0, 0.0); },
+        "spring.target", "0");
+  check([](Fixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(1.0, kNan, 0.0, 0.0); },
+        "spring.target", "nan");
+  check([](Fixture&, SwingTwistJointDef& d) { d.motor.max_torque = -1.0; }, "motor.max_torque",
+        "-1");
+}
+
 // The typed accessors refuse a joint of another type; frames_at refuses what it cannot use.
 TEST(JointValidation, WrongTypeAndFramesAt) {
   Fixture f = make_world();
@@ -246,6 +294,7 @@ TEST(JointValidation, WrongTypeAndFramesAt) {
   EXPECT_THROW(f.world.joint_def<WeldJointDef>(f.revolute), InvalidArgument);
   EXPECT_THROW(f.world.joint_def<RevoluteJointDef>(f.prismatic), InvalidArgument);
   EXPECT_THROW(f.world.joint_def<PrismaticJointDef>(JointId{77, 0}), InvalidArgument);
+  EXPECT_THROW(f.world.joint_def<SwingTwistJointDef>(f.weld), InvalidArgument);
   EXPECT_THROW(f.world.set_joint(f.weld, f.world.joint_def<RevoluteJointDef>(f.revolute)),
                InvalidArgument);
   EXPECT_THROW(frames_at(f.world, f.a, f.b, {0, 0, 0}, Eigen::Vector3d::Zero()), InvalidArgument);

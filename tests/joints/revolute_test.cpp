@@ -19,17 +19,9 @@ using test::kDt;
 constexpr double kPi = std::numbers::pi;
 constexpr double kG = 9.81;
 
-// A rigid row is solved as a spring of rigid_hertz (60 Hz, capped at 1/(4 h): 60 Hz at 4
-// sub-steps of 1/60 s) and relaxed without bias. Carrying a steady load L on its effective
-// mass m_eff (alpha = L / m_eff) it sags alpha / omega_r^2; a one-sided limit row,
-// speculative while inside, lets through at most one sub-step's acceleration, alpha h^2,
-// before it acts. The bounds below take twice the sum, for the Gauss-Seidel coupling with
-// the joint's other rows. An angular row's m_eff is the inertia about the body's centre
-// along the axis (1 / (a . I^-1 a) with A static), not about the hinge.
-constexpr double kOmegaRigid = 2.0 * kPi * 60.0;
-double rigid_row_bound(double alpha, double h) {
-  return 2.0 * (alpha * h * h + alpha / (kOmegaRigid * kOmegaRigid));
-}
+// The rigid row's bounds: test::rigid_row_bound (joint_test_support.hpp).
+using test::kOmegaRigid;
+using test::rigid_row_bound;
 
 // A bar 0.3 x 1.0 x 0.2 m of 2 kg, its inertia turned off the hinge's axes.
 Eigen::Matrix3d rod_inertia_off_axis() {

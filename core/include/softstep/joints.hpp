@@ -32,7 +32,7 @@ struct DistanceJointDef {
 };
 
 // One value per registered joint type (core/src/joints/joint_registry.hpp).
-enum class JointType { Ball, Distance, Revolute, Prismatic, Weld };
+enum class JointType { Ball, Distance, Revolute, Prismatic, Weld, SwingTwist };
 const char* joint_type_name(JointType type);  // "ball", "distance", "revolute", ...
 
 // What a joint did in the last sub-step and how far it is from satisfied now.
@@ -49,14 +49,19 @@ struct JointReading {
   // joint, how far the length is outside [min, max], or from rest_length when rigid or
   // sprung; for a prismatic joint, the anchor's distance from the slide axis.
   double error = 0.0;
-  // Orientation error now, rad: the angle between the hinge axes (revolute), or the angle of
-  // the relative rotation away from the held one (prismatic, weld).
+  // Orientation error now, rad: the angle between the hinge axes (revolute), the angle of
+  // the relative rotation away from the held one (prismatic, weld), or how far the swing is
+  // outside the cone or the twist outside its limit, the larger (swing-twist, 0 within).
   double angular_error = 0.0;
-  // Revolute: the hinge angle, rad, unwrapped. Prismatic: the translation, m.
+  // Revolute: the hinge angle, rad, unwrapped. Prismatic: the translation, m. Swing-twist:
+  // the twist, rad, in (-pi, pi].
   double position = 0.0;
+  // Swing-twist: the swing (the angle between the two twist axes), rad, in [0, pi].
+  double swing = 0.0;
   // The axis rows' impulses in the last sub-step (revolute N m s, prismatic N s): the limit
   // rows' sum (lower pushes towards a larger position, upper towards a smaller one), the
-  // motor, the spring.
+  // motor, the spring. Swing-twist: the twist limit rows' sum, and the lengths of the
+  // motor's and the spring's angular impulses.
   double limit_impulse = 0.0;
   double motor_impulse = 0.0;
   double spring_impulse = 0.0;

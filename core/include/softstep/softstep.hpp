@@ -7,6 +7,7 @@
 #include "softstep/joints.hpp"
 #include "softstep/joints/prismatic.hpp"
 #include "softstep/joints/revolute.hpp"
+#include "softstep/joints/swing_twist.hpp"
 #include "softstep/joints/weld.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/recording.hpp"

@@ -14,6 +14,7 @@
 #include "softstep/joints.hpp"
 #include "softstep/joints/prismatic.hpp"
 #include "softstep/joints/revolute.hpp"
+#include "softstep/joints/swing_twist.hpp"
 #include "softstep/joints/weld.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/step_plan.hpp"
@@ -121,7 +122,7 @@ class World {
   std::size_t body_count() const;
 
   // Any joint type: BallJointDef, DistanceJointDef, RevoluteJointDef, PrismaticJointDef,
-  // WeldJointDef. Every field is validated first (InvalidArgument names it); the joint wakes
+  // WeldJointDef, SwingTwistJointDef. Every field is validated first (InvalidArgument names it); the joint wakes
   // the islands of both bodies.
   template <class Def>
   JointId create_joint(const Def& def);

@@ -9,6 +9,7 @@
 #include "joints/distance_joint.hpp"
 #include "joints/prismatic_joint.hpp"
 #include "joints/revolute_joint.hpp"
+#include "joints/swing_twist_joint.hpp"
 #include "joints/weld_joint.hpp"
 
 namespace softstep {
@@ -19,7 +20,8 @@ using JointKinds = KindList<
     DistanceKind,
     RevoluteKind,
     PrismaticKind,
-    WeldKind>;
+    WeldKind,
+    SwingTwistKind>;
 // clang-format on
 
 template <class... Kinds>

@@ -111,8 +111,8 @@ void write_frames(const Def& def, const BodyIndex& index, nlohmann::json& out) {
 }
 
 // A missing bound is no bound (JSON has no infinity).
-AxisLimit read_limit(ObjectReader& parent) {
-  ObjectReader f(parent.source(), parent.object("limit"), parent.path_of("limit"));
+AxisLimit read_limit(ObjectReader& parent, const char* key = "limit") {
+  ObjectReader f(parent.source(), parent.object(key), parent.path_of(key));
   AxisLimit limit;
   limit.enabled = f.boolean("enabled", limit.enabled);
   limit.lower = f.number("lower", -std::numeric_limits<double>::infinity());
@@ -210,6 +210,49 @@ void write_weld(const World& world, JointId id, const BodyIndex& index, nlohmann
   out["angular"] = spring_json(def.angular);
 }
 
+// The swing-twist joint: the cone, the twist limit (as an axis limit), the orientation spring
+// (its target a quaternion [w, x, y, z], as body orientations are written) and the friction.
+SwingTwistJointDef read_swing_twist(ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  SwingTwistJointDef def;
+  read_frames(fields, bodies, def);
+  {
+    ObjectReader f(fields.source(), fields.object("cone"), fields.path_of("cone"));
+    def.cone.enabled = f.boolean("enabled", def.cone.enabled);
+    def.cone.half_angle_x = f.number("half_angle_x", def.cone.half_angle_x);
+    def.cone.half_angle_y = f.number("half_angle_y", def.cone.half_angle_y);
+    f.no_other_keys();
+  }
+  def.twist = read_limit(fields, "twist");
+  {
+    ObjectReader f(fields.source(), fields.object("spring"), fields.path_of("spring"));
+    def.spring.spring = f.spring("spring", def.spring.spring);
+    def.spring.target = f.quaternion("target", def.spring.target);
+    f.no_other_keys();
+  }
+  {
+    ObjectReader f(fields.source(), fields.object("motor"), fields.path_of("motor"));
+    def.motor.enabled = f.boolean("enabled", def.motor.enabled);
+    def.motor.max_torque = f.number("max_torque", def.motor.max_torque);
+    f.no_other_keys();
+  }
+  fields.no_other_keys();
+  return def;
+}
+
+void write_swing_twist(const World& world, JointId id, const BodyIndex& index,
+                       nlohmann::json& out) {
+  const auto def = world.joint_def<SwingTwistJointDef>(id);
+  write_frames(def, index, out);
+  out["cone"] = {{"enabled", def.cone.enabled},
+                 {"half_angle_x", def.cone.half_angle_x},
+                 {"half_angle_y", def.cone.half_angle_y}};
+  out["twist"] = limit_json(def.twist);
+  const Quaternion& q = def.spring.target;
+  out["spring"] = {{"spring", spring_json(def.spring.spring)},
+                   {"target", {q.w(), q.x(), q.y(), q.z()}}};
+  out["motor"] = {{"enabled", def.motor.enabled}, {"max_torque", def.motor.max_torque}};
+}
+
 // Creates a joint, or changes one in place, from a Def read by ReadDef.
 template <class Def, Def (*ReadDef)(ObjectReader&, const std::vector<BodyId>&)>
 JointId create_from(World& world, ObjectReader& fields, const std::vector<BodyId>& bodies) {
@@ -232,6 +275,7 @@ constexpr JointFormat kJointFormats[] = {
     SOFTSTEP_JOINT_FORMAT("revolute", JointType::Revolute, RevoluteJointDef, read_revolute, write_revolute),
     SOFTSTEP_JOINT_FORMAT("prismatic", JointType::Prismatic, PrismaticJointDef, read_prismatic, write_prismatic),
     SOFTSTEP_JOINT_FORMAT("weld", JointType::Weld, WeldJointDef, read_weld, write_weld),
+    SOFTSTEP_JOINT_FORMAT("swing_twist", JointType::SwingTwist, SwingTwistJointDef, read_swing_twist, write_swing_twist),
 };
 
 #undef SOFTSTEP_JOINT_FORMAT
