@@ -41,6 +41,10 @@ const char* joint_type_name(JointType type) {
       return "prismatic";
     case JointType::Weld:
       return "weld";
+    case JointType::Wheel:
+      return "wheel";
+    case JointType::Motor:
+      return "motor";
   }
   return "?";
 }

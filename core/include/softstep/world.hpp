@@ -15,6 +15,8 @@
 #include "softstep/joints/prismatic.hpp"
 #include "softstep/joints/revolute.hpp"
 #include "softstep/joints/weld.hpp"
+#include "softstep/joints/wheel.hpp"
+#include "softstep/joints/motor.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/step_plan.hpp"
 #include "softstep/task_callbacks.hpp"
@@ -117,7 +119,7 @@ class World {
   std::size_t body_count() const;
 
   // Any joint type: BallJointDef, DistanceJointDef, RevoluteJointDef, PrismaticJointDef,
-  // WeldJointDef. Every field is validated first (InvalidArgument names it); the joint wakes
+  // WeldJointDef, WheelJointDef, MotorJointDef. Every field is validated first (InvalidArgument names it); the joint wakes
   // the islands of both bodies.
   template <class Def>
   JointId create_joint(const Def& def);

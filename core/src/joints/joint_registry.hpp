@@ -10,6 +10,8 @@
 #include "joints/prismatic_joint.hpp"
 #include "joints/revolute_joint.hpp"
 #include "joints/weld_joint.hpp"
+#include "joints/wheel_joint.hpp"
+#include "joints/motor_joint.hpp"
 
 namespace softstep {
 
@@ -19,7 +21,9 @@ using JointKinds = KindList<
     DistanceKind,
     RevoluteKind,
     PrismaticKind,
-    WeldKind>;
+    WeldKind,
+    WheelKind,
+    MotorKind>;
 // clang-format on
 
 template <class... Kinds>
