@@ -202,6 +202,7 @@ int profile_command(ProfileOptions o) {
       if (!trace_path.empty()) {
         trace.add_step(std::chrono::duration<double, std::micro>(t0 - run_start).count(), p);
       }
+      if (run.after_step) run.after_step();
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
       }
@@ -266,6 +267,7 @@ int profile_command(ProfileOptions o) {
         "column)\n",
         stretch);
   }
+  if (run.reading) std::printf("%s", run.reading().c_str());
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {

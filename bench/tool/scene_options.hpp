@@ -11,6 +11,8 @@
 #include "scenes/grid_scene.hpp"
 #include "scenes/hinge_chain.hpp"
 #include "scenes/prismatic_stack.hpp"
+#include "scenes/suspension_bridge.hpp"
+#include "scenes/vehicle_scene.hpp"
 #include "tool/arguments.hpp"
 
 namespace CLI {
@@ -29,6 +31,9 @@ struct SceneChoice {
   scenes::BridgeOptions bridge;
   scenes::HingeChainOptions hinge;     // tool/joint_scenes.cpp
   scenes::PrismaticStackOptions stack;
+  scenes::VehicleOptions vehicle;                 // tool/talk_scenes.cpp
+  scenes::SuspensionBridgeOptions suspension;
+  int talk_count = 1;  // --count: cars or bridges
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
   // Parsed straight into; turned into the scenes' springs and masses once parsing is complete.
   double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
@@ -57,6 +62,10 @@ struct SceneRun {
   // How far below its start the lowest body could ever hang, m (the potential-energy datum
   // of the sweep's energy drift). A scene file: the diagonal of its bodies' bounding box.
   double reach = 0.0;
+  // A scene's own reading (vehicle: bounce and ride height; suspension-bridge: sag), fed
+  // after every step by after_step and printed at the end; empty when the scene has none.
+  std::function<void()> after_step;
+  std::function<std::string()> reading;
 };
 
 // The settings a run starts from: the scene file's, or the defaults for a built-in scene. The
