@@ -27,7 +27,7 @@ struct SuspensionBridgeOptions {
   double segment = 1.0;    // m, cable rod length
   double slack_ratio = 0.9;  // towers' distance / the cable's length
   double plank_mass = 50.0;  // kg, 0.9 x 0.1 x 3 m
-  double node_mass = 5.0;    // kg per cable node
+  double node_mass = 40.0;   // kg per cable node (heavy enough that the rods barely stretch)
   double load_mass = 500.0;  // kg
   double width = 3.0;        // m, between the cables
   double damping = 0.5;      // 1/s linear damping of every body, so the bridge settles

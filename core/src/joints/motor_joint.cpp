@@ -6,6 +6,7 @@
 
 #include "joints/frame_joints.hpp"
 #include "joints/joint_api.hpp"
+#include "joints/weld_joint.hpp"
 #include "state_hasher.hpp"
 
 namespace softstep {
@@ -64,16 +65,15 @@ void MotorKind::write_step_start(Group<W>& g, int lane, JointSlot& j,
                     world_frames(bodies[j.body_a], bodies[j.body_b], d.frame_a, d.frame_b));
 }
 
+// The impulses sit in the lanes the motor joint shares with the weld joint.
 template <int W>
 void MotorKind::read_impulses(const Group<W>& g, int lane, float* out) {
-  for (int k = 0; k < 3; ++k) out[k] = g.point_impulse[k][lane];
-  for (int k = 0; k < 3; ++k) out[3 + k] = g.lock_impulse[k][lane];
+  WeldKind::read_impulses<W>(g, lane, out);
 }
 
 template <int W>
 void MotorKind::clear_impulses(Group<W>& g) {
-  for (auto& row : g.point_impulse) std::fill(std::begin(row), std::end(row), 0.0f);
-  for (auto& row : g.lock_impulse) std::fill(std::begin(row), std::end(row), 0.0f);
+  WeldKind::clear_impulses<W>(g);
 }
 
 JointSlot MotorKind::make_slot(const World::Impl& w, std::string_view call, const Def& def) {

@@ -11,23 +11,21 @@
 #include "softstep/simd/frame_lanes.hpp"
 #include "softstep/simd/parts/angular_parts.hpp"
 #include "softstep/simd/parts/point_part.hpp"
+#include "softstep/simd/weld_joint_kernel.hpp"
 
 namespace softstep::simd {
 
 inline constexpr std::uint32_t kMotorLinearSoft = 1u;
 inline constexpr std::uint32_t kMotorAngularSoft = 2u;
 
+// A weld's lanes (frames, the two halves' springs, point and rotation impulses) and the caps.
 template <int W>
-struct alignas(32) MotorJointGroup : FrameLanes<W> {
-  SoftRowLanes<W> linear;
-  SoftRowLanes<W> angular;
+struct alignas(32) MotorJointGroup : WeldJointGroup<W> {
   float max_force[W];   // N
   float max_torque[W];  // N m
   // Prepared once per step: the caps times the sub-step.
   float max_linear_impulse[W];
   float max_angular_impulse[W];
-  float point_impulse[3][W];
-  float lock_impulse[3][W];
 };
 
 template <class L>
