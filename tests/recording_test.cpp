@@ -164,6 +164,52 @@ TEST(Recording, AngularJointsAndAppliedForcesReplayBitForBit) {
   std::filesystem::remove(path);
 }
 
+// Wheel and motor joints created while recording, steered and re-targeted by set_joint.
+TEST(Recording, WheelAndMotorJointsReplayBitForBit) {
+  const std::string path = temp_path("wheel_motor");
+  World world;
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  const BodyId g = world.create_body(ground);
+  world.start_recording(path);
+  BodyDef box;
+  box.position = {0.0, 1.0, 0.0};
+  const BodyId chassis = world.create_body(box);
+  box.position = {0.5, 0.6, 0.4};
+  const BodyId wheel = world.create_body(box);
+  const JointFrames wf = frames_at(world, chassis, wheel, box.position, Eigen::Vector3d::UnitY(),
+                                   Eigen::Vector3d::UnitZ());
+  WheelJointDef w;
+  w.body_a = chassis;
+  w.body_b = wheel;
+  w.frame_a = wf.a;
+  w.frame_b = wf.b;
+  w.spring = {Spring::soft(3.0, 0.4), 0.05};
+  w.sprung_mass = 2.0;
+  w.limit = {true, -0.2, 0.2};
+  w.motor = {true, 4.0, 2.0};
+  const JointId wheeled = world.create_joint(w);
+  MotorJointDef m;
+  m.body_a = g;
+  m.body_b = chassis;
+  m.frame_a.local_anchor = {0.0, 1.0, 0.0};
+  m.max_force = 40.0;
+  m.max_torque = 5.0;
+  m.linear = Spring::soft(2.0, 1.0);
+  const JointId driven = world.create_joint(m);
+  for (int i = 0; i < 10; ++i) world.step(1.0 / 60.0);
+  w.steering = 0.4;
+  world.set_joint(wheeled, w);
+  m.frame_a.local_anchor = {0.5, 1.2, 0.0};
+  world.set_joint(driven, m);
+  for (int i = 0; i < 10; ++i) world.step(1.0 / 60.0);
+  world.stop_recording();
+  const ReplayReport report = replay_recording(path, [](World&, long, double) {});
+  EXPECT_EQ(report.steps, 20);
+  EXPECT_EQ(report.state_hash, world.state_hash());
+  std::filesystem::remove(path);
+}
+
 TEST(Recording, AChangedStepFailsReplayAtThatStep) {
   const std::string path = temp_path("changed");
   record_every_call(path, 20);

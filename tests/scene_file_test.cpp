@@ -17,6 +17,8 @@
 #include "scenes/grid_scene.hpp"
 #include "scenes/joint_zoo.hpp"
 #include "scenes/ragdoll_scene.hpp"
+#include "scenes/suspension_bridge.hpp"
+#include "scenes/vehicle_scene.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
@@ -143,7 +145,38 @@ std::vector<BuiltScene> built_scenes() {
   zoo.links = 3;
   scenes::RagdollOptions ragdolls;
   ragdolls.count = 2;
+  // Cars on wheel joints (steered, motored, sprung, limited; rails of free wheel joints), a
+  // suspension bridge, and motor joints, rigid and soft, dragging boxes.
+  scenes::VehicleOptions cars;
+  cars.cars = 2;
+  cars.steering = 0.1;
+  scenes::SuspensionBridgeOptions suspension;
+  suspension.stations = 5;
+  const auto dragged_boxes = [](World& w) {
+    BodyDef ground;
+    ground.type = BodyType::Static;
+    const BodyId g = w.create_body(ground);
+    for (int i = 0; i < 3; ++i) {
+      BodyDef box;
+      box.position = {double(i), 1.0, 0.0};
+      const BodyId b = w.create_body(box);
+      MotorJointDef m;
+      m.body_a = g;
+      m.body_b = b;
+      m.frame_a.local_anchor = {double(i), 2.0, 0.5};
+      m.frame_a.local_axis = {0.0, 1.0, 0.0};  // unit: normalizing again keeps it
+      m.frame_b.local_anchor = {0.1, 0.0, 0.0};
+      m.max_force = 50.0 * (i + 1);
+      m.max_torque = 3.0;
+      if (i > 0) m.linear = Spring::soft(2.0, 0.7);
+      if (i > 1) m.angular = Spring::soft(1.0, 1.0);
+      w.create_joint(m);
+    }
+  };
   return {
+      {"vehicle", {}, [=](World& w) { scenes::build_vehicle(w, cars); }},
+      {"suspension_bridge", {}, [=](World& w) { scenes::build_suspension_bridge(w, suspension); }},
+      {"motor_joints", {}, dragged_boxes},
       {"chain", {}, [=](World& w) { scenes::build_chain(w, chain); }},
       {"soft_hanging_distance_chain", {}, [=](World& w) { scenes::build_chain(w, soft_chain); }},
       {"rope_with_end_mass", {}, [=](World& w) { scenes::build_chain(w, rope); }},

@@ -18,6 +18,8 @@
 #include "softstep/simd/revolute_joint_kernel.hpp"
 #include "softstep/simd/swing_twist_joint_kernel.hpp"
 #include "softstep/simd/weld_joint_kernel.hpp"
+#include "softstep/simd/wheel_joint_kernel.hpp"
+#include "softstep/simd/motor_joint_kernel.hpp"
 
 namespace softstep::simd {
 namespace {
@@ -104,6 +106,16 @@ Packed<Group, W> pack_chains(int total_links, int chain_length) {
         g.spring.hertz[lane] = 2.0f;
         g.spring.zeta[lane] = 0.5f;
       }
+      if constexpr (requires { g.steer_cos; }) {  // a wheel: straight ahead, 10 kg sprung
+        g.steer_cos[lane] = 1.0f;
+        g.sprung_mass[lane] = 10.0f;
+      }
+      if constexpr (requires { g.max_force; }) {  // a motor joint: caps, springs when soft
+        g.max_force[lane] = 100.0f;
+        g.max_torque[lane] = 10.0f;
+        g.linear.hertz[lane] = g.angular.hertz[lane] = 2.0f;
+        g.linear.zeta[lane] = g.angular.zeta[lane] = 1.0f;
+      }
       if constexpr (requires { g.axis; }) {  // limits around 0, a motor and a spring
         g.axis.lower_gap[lane] = 0.5f;
         g.axis.upper_gap[lane] = 0.5f;
@@ -172,6 +184,8 @@ SOFTSTEP_ANGULAR_KERNEL(SwingTwistJointGroup, swing_twist,
 // A ragdoll's joint: cone, twist limits and friction (9 rows); and every part (12).
 constexpr std::uint32_t kRagdollParts = kSwingCone | kTwistLimit | kSwingTwistMotor;
 constexpr std::uint32_t kAllSwingTwistParts = kRagdollParts | kSwingTwistSpring;
+SOFTSTEP_ANGULAR_KERNEL(WheelJointGroup, wheel, sig == 0 ? 4.0 : 8.0);
+SOFTSTEP_ANGULAR_KERNEL(MotorJointGroup, motor, (void(sig), 6.0));
 
 // F: the kernel variant of ball and distance joints. Every lane of these chains is rigid with
 // no limit row, so the general kernel (the default) and the rigid variant compute the same
@@ -224,6 +238,9 @@ SOFTSTEP_KERNEL_BENCH(PrismaticJointGroup, Solve);
 SOFTSTEP_KERNEL_BENCH(PrismaticJointGroup, Relax);
 SOFTSTEP_KERNEL_BENCH(WeldJointGroup, Solve);
 SOFTSTEP_KERNEL_BENCH(WeldJointGroup, Relax);
+SOFTSTEP_KERNEL_BENCH(WheelJointGroup, Solve);
+SOFTSTEP_KERNEL_BENCH(WheelJointGroup, Relax);
+SOFTSTEP_KERNEL_BENCH(MotorJointGroup, Solve);  // rigid halves; never relaxed
 
 // The angular types with every part of their free axis (limit, motor, spring).
 #define SOFTSTEP_ALL_PARTS_BENCH(GROUP, STAGE)                              \
@@ -235,6 +252,15 @@ SOFTSTEP_KERNEL_BENCH(WeldJointGroup, Relax);
       ->Apply(scenes)
 SOFTSTEP_ALL_PARTS_BENCH(RevoluteJointGroup, Solve);
 SOFTSTEP_ALL_PARTS_BENCH(PrismaticJointGroup, Solve);
+SOFTSTEP_ALL_PARTS_BENCH(WheelJointGroup, Solve);
+// The motor joint with both halves soft.
+constexpr std::uint32_t kMotorSoft = kMotorLinearSoft | kMotorAngularSoft;
+BENCHMARK(run<float, MotorJointGroup, Stage::Solve, kGeneralKernel, kMotorSoft>)
+    ->Name("MotorJointGroup/Solve/scalar/soft")
+    ->Apply(scenes);
+BENCHMARK(run<Avx2, MotorJointGroup, Stage::Solve, kGeneralKernel, kMotorSoft>)
+    ->Name("MotorJointGroup/Solve/avx2/soft")
+    ->Apply(scenes);
 
 #define SOFTSTEP_SWING_TWIST_BENCH(STAGE, PARTS, SUFFIX)                                       \
   BENCHMARK(run<float, SwingTwistJointGroup, Stage::STAGE, kGeneralKernel, PARTS>)            \

@@ -50,9 +50,6 @@ void add_joint_scene_options(CLI::App& cmd, SceneChoice& c) {
   cmd.add_option("--height", c.stack.height, "prismatic-stack: cubes per column")
       ->check(whole_in(1, 10000000))
       ->capture_default_str();
-  cmd.add_option("--count", c.ragdoll.count, "ragdoll: ragdolls (16 bodies each)")
-      ->check(whole_in(1, 10000000))
-      ->capture_default_str();
 }
 
 void finish_joint_scene_options(const CLI::App& cmd, SceneChoice& c) {
@@ -62,7 +59,6 @@ void finish_joint_scene_options(const CLI::App& cmd, SceneChoice& c) {
   };
   for (const char* flag : {"--limit", "--motor-torque", "--motor-speed"}) only_for(flag, "hinge-chain");
   for (const char* flag : {"--columns", "--height"}) only_for(flag, "prismatic-stack");
-  only_for("--count", "ragdoll");
   c.hinge.links = c.chain.links;
   c.hinge.chains = c.chain.chains;
   if (cmd.count("--limit") > 0) {

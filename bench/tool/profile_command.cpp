@@ -122,6 +122,7 @@ int profile_command(ProfileOptions o) {
       samples.add(world.last_step_profile(),
                   std::chrono::duration<double, std::milli>(t1 - t0).count(),
                   std::chrono::duration<double, std::micro>(t0 - run_start).count());
+      if (run.after_step) run.after_step();
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
         if (run.limit_violation_deg)
@@ -184,6 +185,7 @@ int profile_command(ProfileOptions o) {
         "twist or hinge limit)\n",
         limit_now, worst_limit_run);
   }
+  if (run.reading) std::printf("%s", run.reading().c_str());
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {

@@ -8,6 +8,7 @@
 
 #include "softstep/metrics.hpp"
 #include "tool/joint_scenes.hpp"
+#include "tool/talk_scenes.hpp"
 #include "softstep/scene_file.hpp"
 #include "tool/report_files.hpp"
 
@@ -36,6 +37,13 @@ const char* const kSceneHelp =
     "          hips, revolute elbows, knees and ankles, anatomical limits, joint friction),\n"
     "          dropped in a T-pose from 10 m onto a 1 m rope tied to the pelvis; reports the\n"
     "          worst cone, twist or hinge-limit violation in degrees.\n"
+    "  vehicle  --count N cars of 1,200 kg (default 100), each a chassis on four wheel joints\n"
+    "          (2 Hz springs, ratio 0.3, 20 kg wheels, motors at the rolling speed) rolling at\n"
+    "          10 m/s on rails; prints the first car's bounce and ride height against what\n"
+    "          its springs promise.\n"
+    "  suspension-bridge  --count N bridges (default 10) of 21 planks on revolute joints hung\n"
+    "          from two cables of distance joints, a 500 kg load at mid-span; prints the sag\n"
+    "          against the static solution.\n"
     "Joints are rigid unless --hertz gives them springs.";
 
 bool is_recording_file(const std::string& path) {
@@ -46,17 +54,18 @@ bool is_recording_file(const std::string& path) {
 
 void add_scene_options(CLI::App& cmd, SceneChoice& c) {
   c.chain.links = 10000;
-  cmd.add_option("scene", c.scene, "the scene: chain, grid, bridge, hinge-chain, prismatic-stack, ragdoll or a scene file")
+  cmd.add_option("scene", c.scene, "the scene: chain, grid, bridge, hinge-chain, prismatic-stack, ragdoll, vehicle, suspension-bridge or a scene file")
       ->check(CLI::Validator(
           [](std::string& name) -> std::string {
             if (name == "chain" || name == "grid" || name == "bridge" || is_joint_scene(name) ||
+                is_talk_scene(name) ||
                 std::filesystem::is_regular_file(name))
               return {};
             return "'" + name +
                    "' is neither a scene (chain, grid, bridge, hinge-chain, prismatic-stack, "
-                   "ragdoll) nor a scene file";
+                   "ragdoll, vehicle, suspension-bridge) nor a scene file";
           },
-          "chain|grid|bridge|hinge-chain|prismatic-stack|ragdoll|FILE"))
+          "chain|grid|bridge|hinge-chain|prismatic-stack|ragdoll|vehicle|suspension-bridge|FILE"))
       ->capture_default_str();
   cmd.add_option("--links", c.chain.links, "chain, hinge-chain: links per chain")
       ->check(whole_in(1, 100000000))
@@ -90,10 +99,12 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
       ->check(finite_in(0.0, 1e9))
       ->capture_default_str();
   add_joint_scene_options(cmd, c);
+  add_talk_scene_options(cmd, c);
 
   cmd.parse_complete_callback([&cmd, &c] {
     const bool named =
-        c.scene == "chain" || c.scene == "grid" || c.scene == "bridge" || is_joint_scene(c.scene);
+        c.scene == "chain" || c.scene == "grid" || c.scene == "bridge" || is_joint_scene(c.scene) ||
+        is_talk_scene(c.scene);
     c.from_recording = !named && is_recording_file(c.scene);
     c.from_file = !named && !c.from_recording;
     const auto only_for = [&](const char* flag, const char* owner) {
@@ -140,6 +151,7 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
     c.spring_text = soft ? "spring " + format_number(c.hertz) + " Hz, zeta " + format_number(c.zeta)
                          : std::string("rigid");
     finish_joint_scene_options(cmd, c);
+    finish_talk_scene_options(cmd, c);
   });
   cmd.footer(kSceneHelp);
 }
@@ -194,6 +206,7 @@ SceneRun load_file_scene(World& world, const SceneChoice& c) {
 
 SceneRun build_scene(World& world, const SceneChoice& c) {
   if (is_joint_scene(c.scene)) return build_joint_scene(world, c);
+  if (is_talk_scene(c.scene)) return build_talk_scene(world, c);
   if (c.from_file) return load_file_scene(world, c);
   SceneRun run;
   if (c.scene == "chain") {

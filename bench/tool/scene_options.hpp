@@ -12,6 +12,8 @@
 #include "scenes/hinge_chain.hpp"
 #include "scenes/prismatic_stack.hpp"
 #include "scenes/ragdoll_scene.hpp"
+#include "scenes/suspension_bridge.hpp"
+#include "scenes/vehicle_scene.hpp"
 #include "tool/arguments.hpp"
 
 namespace CLI {
@@ -31,6 +33,9 @@ struct SceneChoice {
   scenes::HingeChainOptions hinge;     // tool/joint_scenes.cpp
   scenes::PrismaticStackOptions stack;
   scenes::RagdollOptions ragdoll;
+  scenes::VehicleOptions vehicle;                 // tool/talk_scenes.cpp
+  scenes::SuspensionBridgeOptions suspension;
+  int count = 1;  // --count: ragdolls, cars or bridges (talk_scenes.cpp, one option for the three)
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
   // Parsed straight into; turned into the scenes' springs and masses once parsing is complete.
   double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
@@ -64,6 +69,10 @@ struct SceneRun {
   // The worst joint-limit violation now, degrees (a cone, twist or hinge limit), for the
   // scenes whose limits the tool knows (ragdoll); empty otherwise.
   std::function<double()> limit_violation_deg;
+  // A scene's own reading (vehicle: bounce and ride height; suspension-bridge: sag), fed
+  // after every step by after_step and printed at the end; empty when the scene has none.
+  std::function<void()> after_step;
+  std::function<std::string()> reading;
 };
 
 // True when the file starts with a recording's signature (a scene file is JSON).

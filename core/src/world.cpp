@@ -43,6 +43,10 @@ const char* joint_type_name(JointType type) {
       return "weld";
     case JointType::SwingTwist:
       return "swing_twist";
+    case JointType::Wheel:
+      return "wheel";
+    case JointType::Motor:
+      return "motor";
   }
   return "?";
 }

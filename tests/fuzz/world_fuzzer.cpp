@@ -143,6 +143,14 @@ void mutate(FuzzedDataProvider& in, Def& d) {
       break;
     default:
       if constexpr (requires { d.spring; }) d.spring = axis_spring(in);
+      if constexpr (requires { d.steering; }) {
+        d.steering = value(in);
+        d.sprung_mass = value(in);
+      }
+      if constexpr (requires { d.max_force; }) {
+        d.max_force = value(in);
+        d.max_torque = value(in);
+      }
       break;
   }
 }
@@ -313,11 +321,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           }
           break;
         }
-        case 10: {  // a revolute, prismatic, weld or swing-twist joint with random controls
+        case 10: {  // a revolute, prismatic, weld, swing-twist, wheel or motor joint with random controls
           if (joints.size() >= 48) break;
           const BodyId a = pick(in, bodies);
           const BodyId b = pick(in, bodies);
-          const int type = in.ConsumeIntegralInRange<int>(0, 3);
+          const int type = in.ConsumeIntegralInRange<int>(0, 5);
           if (type == 0) {
             softstep::RevoluteJointDef j;
             j.body_a = a;
@@ -336,18 +344,39 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             j.motor = motor<softstep::LinearMotor>(in);
             j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
             joints.push_back(world.create_joint(j));
-          } else if (type == 3) {
+          } else if (type == 5) {
             softstep::SwingTwistJointDef j;
             j.body_a = a;
             j.body_b = b;
             frames(in, world, a, b, j.frame_a, j.frame_b);
             swing_twist_parts(in, j);
             joints.push_back(world.create_joint(j));
-          } else {
+          } else if (type == 2) {
             softstep::WeldJointDef j;
             j.body_a = a;
             j.body_b = b;
             frames(in, world, a, b, j.frame_a, j.frame_b);
+            j.linear = spring(in);
+            j.angular = spring(in);
+            joints.push_back(world.create_joint(j));
+          } else if (type == 3) {
+            softstep::WheelJointDef j;
+            j.body_a = a;
+            j.body_b = b;
+            frames(in, world, a, b, j.frame_a, j.frame_b);
+            j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
+            j.sprung_mass = value(in);
+            j.limit = limit(in);
+            j.motor = motor<softstep::AngularMotor>(in);
+            j.steering = value(in);
+            joints.push_back(world.create_joint(j));
+          } else {
+            softstep::MotorJointDef j;
+            j.body_a = a;
+            j.body_b = b;
+            frames(in, world, a, b, j.frame_a, j.frame_b);
+            j.max_force = value(in);
+            j.max_torque = value(in);
             j.linear = spring(in);
             j.angular = spring(in);
             joints.push_back(world.create_joint(j));
@@ -383,6 +412,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
               } else {
                 swing_twist_parts(in, d);
               }
+              world.set_joint(id, d);
+              break;
+            }
+            case softstep::JointType::Wheel: {
+              auto d = world.joint_def<softstep::WheelJointDef>(id);
+              mutate(in, d);
+              world.set_joint(id, d);
+              break;
+            }
+            case softstep::JointType::Motor: {
+              auto d = world.joint_def<softstep::MotorJointDef>(id);
+              mutate(in, d);
               world.set_joint(id, d);
               break;
             }

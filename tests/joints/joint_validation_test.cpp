@@ -1,4 +1,5 @@
-// Bad input to the revolute, prismatic, weld and swing-twist joints (create_joint, set_joint, joint_def,
+// Bad input to the revolute, prismatic, weld, swing-twist, wheel and motor joints (create_joint,
+// set_joint, joint_def,
 // frames_at) is rejected with an InvalidArgument naming the field and showing the value, and
 // the world is left exactly as it was (state_hash): the house style of validation_test.cpp.
 #include <gtest/gtest.h>
@@ -19,12 +20,12 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct Fixture {
   World world;
   BodyId ground, a, b, gone;
-  JointId revolute, prismatic, weld, swing_twist;
+  JointId revolute, prismatic, weld, swing_twist, wheel, motor;
 };
 
 // A world with one joint of each type, stepped so that impulses and poses are non-trivial.
 Fixture make_world() {
-  Fixture f{World(), {}, {}, {}, {}, {}, {}, {}, {}};
+  Fixture f{World(), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   f.ground = test::static_body(f.world);
   f.a = test::dynamic_body(f.world, {1, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
   f.b = test::dynamic_body(f.world, {2, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
@@ -64,6 +65,27 @@ Fixture make_world() {
   st.spring.spring = Spring::soft(2.0, 0.3);
   st.motor = {true, 0.2};
   f.swing_twist = f.world.create_joint(st);
+  const JointFrames fw =
+      frames_at(f.world, f.a, f.b, {1.5, 0, 0}, Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ());
+  WheelJointDef wheel;
+  wheel.body_a = f.a;
+  wheel.body_b = f.b;
+  wheel.frame_a = fw.a;
+  wheel.frame_b = fw.b;
+  wheel.spring = {Spring::soft(2.0, 0.5), 0.0};
+  wheel.sprung_mass = 1.0;
+  wheel.motor = {true, 1.0, 2.0};
+  wheel.steering = 0.2;
+  f.wheel = f.world.create_joint(wheel);
+  MotorJointDef m;
+  m.body_a = f.ground;
+  m.body_b = f.b;
+  m.frame_a = fb.a;
+  m.frame_b = fb.b;
+  m.max_force = 10.0;
+  m.max_torque = 1.0;
+  m.linear = Spring::soft(2.0, 1.0);
+  f.motor = f.world.create_joint(m);
   for (int i = 0; i < 3; ++i) f.world.step(1.0 / 60.0);
   return f;
 }
@@ -170,6 +192,8 @@ TEST(JointValidation, AnchorsAndChangedBodiesNamedAsTheCallerSpellsThem) {
   expect_anchor_and_body_change_named<WeldJointDef>("WeldJointDef", &Fixture::weld);
   expect_anchor_and_body_change_named<SwingTwistJointDef>("SwingTwistJointDef",
                                                           &Fixture::swing_twist);
+  expect_anchor_and_body_change_named<WheelJointDef>("WheelJointDef", &Fixture::wheel);
+  expect_anchor_and_body_change_named<MotorJointDef>("MotorJointDef", &Fixture::motor);
 }
 
 TEST(JointValidation, RevoluteFrames) {
@@ -183,6 +207,12 @@ TEST(JointValidation, WeldFrames) {
 }
 TEST(JointValidation, SwingTwistFrames) {
   expect_frame_rejections<SwingTwistJointDef>("SwingTwistJointDef", &Fixture::swing_twist);
+}
+TEST(JointValidation, WheelFrames) {
+  expect_frame_rejections<WheelJointDef>("WheelJointDef", &Fixture::wheel);
+}
+TEST(JointValidation, MotorFrames) {
+  expect_frame_rejections<MotorJointDef>("MotorJointDef", &Fixture::motor);
 }
 
 // Limits, motors and springs along the free axis (revolute and prismatic alike).
@@ -239,6 +269,42 @@ TEST(JointValidation, RevoluteAxisControls) {
 }
 TEST(JointValidation, PrismaticAxisControls) {
   expect_axis_rejections<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic, "max_force");
+}
+
+TEST(JointValidation, WheelAxisControls) {
+  expect_axis_rejections<WheelJointDef>("WheelJointDef", &Fixture::wheel, "max_torque");
+}
+
+// The sprung mass the spring's hertz refers to must be there when the spring is soft.
+TEST(JointValidation, WheelSprungMassAndSteering) {
+  using Mutate = std::function<void(Fixture&, WheelJointDef&)>;
+  const auto check = [](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<WheelJointDef>(m, &Fixture::wheel, "WheelJointDef." + field, value);
+  };
+  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = 0.0; }, "sprung_mass", "0");
+  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = -300.0; }, "sprung_mass", "-300");
+  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = kNan; }, "sprung_mass", "nan");
+  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = 2e9; }, "sprung_mass", "2e+09");
+  check([](Fixture&, WheelJointDef& d) { d.steering = kInf; }, "steering", "inf");
+  // A free spring needs no sprung mass.
+  Fixture f = make_world();
+  WheelJointDef d = f.world.joint_def<WheelJointDef>(f.wheel);
+  d.spring.spring = Spring::free();
+  d.sprung_mass = 0.0;
+  EXPECT_NO_THROW(f.world.set_joint(f.wheel, d));
+}
+
+TEST(JointValidation, MotorCapsAndSprings) {
+  using Mutate = std::function<void(Fixture&, MotorJointDef&)>;
+  const auto check = [](Mutate m, const std::string& field, const std::string& value) {
+    expect_def_rejected<MotorJointDef>(m, &Fixture::motor, "MotorJointDef." + field, value);
+  };
+  check([](Fixture&, MotorJointDef& d) { d.max_force = -1.0; }, "max_force", "-1");
+  check([](Fixture&, MotorJointDef& d) { d.max_torque = kNan; }, "max_torque", "nan");
+  check([](Fixture&, MotorJointDef& d) { d.max_force = 2e9; }, "max_force", "2e+09");
+  check([](Fixture&, MotorJointDef& d) { d.linear = Spring::free(); }, "linear.hertz", "0");
+  check([](Fixture&, MotorJointDef& d) { d.angular = Spring::soft(-2.0, 1.0); }, "angular.hertz",
+        "-2");
 }
 
 TEST(JointValidation, WeldSprings) {
@@ -301,6 +367,12 @@ TEST(JointValidation, WrongTypeAndFramesAt) {
   EXPECT_THROW(frames_at(f.world, f.a, f.b, {kNan, 0, 0}, Eigen::Vector3d::UnitZ()),
                InvalidArgument);
   EXPECT_THROW(frames_at(f.world, f.a, f.gone, {0, 0, 0}, Eigen::Vector3d::UnitZ()),
+               InvalidArgument);
+  EXPECT_THROW(frames_at(f.world, f.a, f.b, {0, 0, 0}, Eigen::Vector3d::UnitZ(),
+                         Eigen::Vector3d(0, 0, 2)),
+               InvalidArgument);
+  EXPECT_THROW(f.world.joint_def<WheelJointDef>(f.motor), InvalidArgument);
+  EXPECT_THROW(f.world.set_joint(f.wheel, f.world.joint_def<MotorJointDef>(f.motor)),
                InvalidArgument);
   EXPECT_EQ(f.world.state_hash(), before);
 }

@@ -32,7 +32,7 @@ struct DistanceJointDef {
 };
 
 // One value per registered joint type (core/src/joints/joint_registry.hpp).
-enum class JointType { Ball, Distance, Revolute, Prismatic, Weld, SwingTwist };
+enum class JointType { Ball, Distance, Revolute, Prismatic, Weld, SwingTwist, Wheel, Motor };
 const char* joint_type_name(JointType type);  // "ball", "distance", "revolute", ...
 
 // What a joint did in the last sub-step and how far it is from satisfied now.

@@ -16,6 +16,8 @@
 #include "softstep/joints/revolute.hpp"
 #include "softstep/joints/swing_twist.hpp"
 #include "softstep/joints/weld.hpp"
+#include "softstep/joints/wheel.hpp"
+#include "softstep/joints/motor.hpp"
 #include "softstep/profile.hpp"
 #include "softstep/step_plan.hpp"
 #include "softstep/task_callbacks.hpp"
@@ -122,8 +124,8 @@ class World {
   std::size_t body_count() const;
 
   // Any joint type: BallJointDef, DistanceJointDef, RevoluteJointDef, PrismaticJointDef,
-  // WeldJointDef, SwingTwistJointDef. Every field is validated first (InvalidArgument names it); the joint wakes
-  // the islands of both bodies.
+  // WeldJointDef, SwingTwistJointDef, WheelJointDef, MotorJointDef. Every field is validated
+  // first (InvalidArgument names it); the joint wakes the islands of both bodies.
   template <class Def>
   JointId create_joint(const Def& def);
   // The joint's definition as the world holds it (normalized axes, clamped lengths).

@@ -162,28 +162,55 @@ void hash_frame(StateHasher& h, const JointFrame& f) {
   h.matrix(f.local_reference);
 }
 
-JointFrames frames_at(const World& world, BodyId a, BodyId b, const Eigen::Vector3d& world_anchor,
-                      const Eigen::Vector3d& world_axis) {
-  const BodyState sa = world.body(a);
-  const BodyState sb = world.body(b);
+namespace {
+JointFrames local_frames(const World& world, BodyId a, BodyId b,
+                         const Eigen::Vector3d& world_anchor, const Eigen::Vector3d& axis,
+                         const Eigen::Vector3d& reference) {
+  const auto local = [&](const BodyState& s) {
+    const Quaternion inverse = s.orientation.conjugate();
+    return JointFrame{inverse * (world_anchor - s.position), inverse * axis, inverse * reference};
+  };
+  return {local(world.body(a)), local(world.body(b))};
+}
+
+Eigen::Vector3d checked_world_axis(const Eigen::Vector3d& world_anchor,
+                                   const Eigen::Vector3d& world_axis) {
   validation::finite("frames_at", "world_anchor", world_anchor);
   validation::finite("frames_at", "world_axis", world_axis);
   if (!(world_axis.norm() > 1e-9)) {
     validation::reject("frames_at", "world_axis", validation::format(world_axis),
                        "must not be zero");
   }
-  const Eigen::Vector3d axis = world_axis.normalized();
+  return world_axis.normalized();
+}
+}  // namespace
+
+JointFrames frames_at(const World& world, BodyId a, BodyId b, const Eigen::Vector3d& world_anchor,
+                      const Eigen::Vector3d& world_axis) {
+  world.body(a);  // unknown bodies are rejected first
+  world.body(b);
+  const Eigen::Vector3d axis = checked_world_axis(world_anchor, world_axis);
   // A reference perpendicular to the axis: the world axis least aligned with it, made
   // perpendicular.
   Eigen::Index least = 0;
   axis.cwiseAbs().minCoeff(&least);
   const Eigen::Vector3d reference =
       (Eigen::Vector3d::Unit(least) - axis[least] * axis).normalized();
-  const auto local = [&](const BodyState& s) {
-    const Quaternion inverse = s.orientation.conjugate();
-    return JointFrame{inverse * (world_anchor - s.position), inverse * axis, inverse * reference};
-  };
-  return {local(sa), local(sb)};
+  return local_frames(world, a, b, world_anchor, axis, reference);
+}
+
+JointFrames frames_at(const World& world, BodyId a, BodyId b, const Eigen::Vector3d& world_anchor,
+                      const Eigen::Vector3d& world_axis, const Eigen::Vector3d& world_reference) {
+  world.body(a);
+  world.body(b);
+  const Eigen::Vector3d axis = checked_world_axis(world_anchor, world_axis);
+  validation::finite("frames_at", "world_reference", world_reference);
+  const Eigen::Vector3d perpendicular = world_reference - world_reference.dot(axis) * axis;
+  if (!(perpendicular.norm() > 1e-6 * world_reference.norm()) || !(world_reference.norm() > 1e-9)) {
+    validation::reject("frames_at", "world_reference", validation::format(world_reference),
+                       "must be a non-zero direction not parallel to the axis");
+  }
+  return local_frames(world, a, b, world_anchor, axis, perpendicular.normalized());
 }
 
 }  // namespace softstep

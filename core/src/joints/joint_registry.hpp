@@ -11,6 +11,8 @@
 #include "joints/revolute_joint.hpp"
 #include "joints/swing_twist_joint.hpp"
 #include "joints/weld_joint.hpp"
+#include "joints/wheel_joint.hpp"
+#include "joints/motor_joint.hpp"
 
 namespace softstep {
 
@@ -21,7 +23,9 @@ using JointKinds = KindList<
     RevoluteKind,
     PrismaticKind,
     WeldKind,
-    SwingTwistKind>;
+    SwingTwistKind,
+    WheelKind,
+    MotorKind>;
 // clang-format on
 
 template <class... Kinds>

@@ -239,6 +239,18 @@ SwingTwistJointDef read_swing_twist(ObjectReader& fields, const std::vector<Body
   return def;
 }
 
+WheelJointDef read_wheel(ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  WheelJointDef def;
+  read_frames(fields, bodies, def);
+  def.spring = read_axis_spring(fields);
+  def.sprung_mass = fields.number("sprung_mass", def.sprung_mass);
+  def.limit = read_limit(fields);
+  def.motor = read_motor(fields, "max_torque", &AngularMotor::max_torque);
+  def.steering = fields.number("steering", def.steering);
+  fields.no_other_keys();
+  return def;
+}
+
 void write_swing_twist(const World& world, JointId id, const BodyIndex& index,
                        nlohmann::json& out) {
   const auto def = world.joint_def<SwingTwistJointDef>(id);
@@ -251,6 +263,37 @@ void write_swing_twist(const World& world, JointId id, const BodyIndex& index,
   out["spring"] = {{"spring", spring_json(def.spring.spring)},
                    {"target", {q.w(), q.x(), q.y(), q.z()}}};
   out["motor"] = {{"enabled", def.motor.enabled}, {"max_torque", def.motor.max_torque}};
+}
+
+void write_wheel(const World& world, JointId id, const BodyIndex& index, nlohmann::json& out) {
+  const auto def = world.joint_def<WheelJointDef>(id);
+  write_frames(def, index, out);
+  out["spring"] = axis_spring_json(def.spring);
+  out["sprung_mass"] = def.sprung_mass;
+  out["limit"] = limit_json(def.limit);
+  out["motor"] = motor_json(def.motor, "max_torque", &AngularMotor::max_torque);
+  out["steering"] = def.steering;
+}
+
+MotorJointDef read_motor_joint(ObjectReader& fields, const std::vector<BodyId>& bodies) {
+  MotorJointDef def;
+  read_frames(fields, bodies, def);
+  def.max_force = fields.number("max_force", def.max_force);
+  def.max_torque = fields.number("max_torque", def.max_torque);
+  def.linear = fields.spring("linear", def.linear);
+  def.angular = fields.spring("angular", def.angular);
+  fields.no_other_keys();
+  return def;
+}
+
+void write_motor_joint(const World& world, JointId id, const BodyIndex& index,
+                       nlohmann::json& out) {
+  const auto def = world.joint_def<MotorJointDef>(id);
+  write_frames(def, index, out);
+  out["max_force"] = def.max_force;
+  out["max_torque"] = def.max_torque;
+  out["linear"] = spring_json(def.linear);
+  out["angular"] = spring_json(def.angular);
 }
 
 // Creates a joint, or changes one in place, from a Def read by ReadDef.
@@ -276,6 +319,8 @@ constexpr JointFormat kJointFormats[] = {
     SOFTSTEP_JOINT_FORMAT("prismatic", JointType::Prismatic, PrismaticJointDef, read_prismatic, write_prismatic),
     SOFTSTEP_JOINT_FORMAT("weld", JointType::Weld, WeldJointDef, read_weld, write_weld),
     SOFTSTEP_JOINT_FORMAT("swing_twist", JointType::SwingTwist, SwingTwistJointDef, read_swing_twist, write_swing_twist),
+    SOFTSTEP_JOINT_FORMAT("wheel", JointType::Wheel, WheelJointDef, read_wheel, write_wheel),
+    SOFTSTEP_JOINT_FORMAT("motor", JointType::Motor, MotorJointDef, read_motor_joint, write_motor_joint),
 };
 
 #undef SOFTSTEP_JOINT_FORMAT

@@ -26,5 +26,9 @@ struct JointFrames {
 };
 JointFrames frames_at(const World& world, BodyId a, BodyId b, const Eigen::Vector3d& world_anchor,
                       const Eigen::Vector3d& world_axis);
+// The same with a chosen reference (a wheel's axle); InvalidArgument also when it is zero or
+// parallel to the axis.
+JointFrames frames_at(const World& world, BodyId a, BodyId b, const Eigen::Vector3d& world_anchor,
+                      const Eigen::Vector3d& world_axis, const Eigen::Vector3d& world_reference);
 
 }  // namespace softstep

@@ -31,19 +31,6 @@ SOFTSTEP_INLINE SliderNow<L> slider_now(const PrismaticJointGroup<kWidth<L>>& g,
   const Frames<L> f = current_frames(g, j);
   return {axis_x(f.a), axis_y(f.a), axis_z(f.a), rotation_error(f.a, f.b)};
 }
-
-template <class L>
-struct SlideAxis {
-  JointBodies<L>& j;
-  SliderAxis<L> row;
-  L k, m_eff;
-  L velocity;
-  L cdot() const { return velocity; }
-  void apply(const L& impulse) {
-    apply_slider_impulse(j, row, impulse);
-    velocity = slider_velocity(j, row);
-  }
-};
 }  // namespace detail
 
 template <class L>
@@ -74,7 +61,7 @@ SOFTSTEP_INLINE void solve_prismatic_joints(PrismaticJointGroup<kWidth<L>>& g,
   const detail::SliderNow<L> s = detail::slider_now<L>(g, j);
   if (signature != 0) {
     const SliderAxis<L> row = slider_axis(j, s.z_a);
-    detail::SlideAxis<L> axis{j, row, row.k, row.m_eff, slider_velocity(j, row)};
+    SlideAxis<L> axis{j, row, row.k, row.m_eff, slider_velocity(j, row)};
     solve_axis_controls<L, kUseBias>(g.axis, signature, dot(s.z_a, j.separation), axis, ctx);
   }
   const RowCoefficients<L> rigid = rigid_coefficients<L>(ctx);

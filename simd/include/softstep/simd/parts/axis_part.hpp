@@ -73,4 +73,19 @@ SOFTSTEP_INLINE void apply_slider_impulse(JointBodies<L>& j, const SliderAxis<L>
   apply_impulse_at(j, impulse * s.n, s.arm_a, j.r_b);
 }
 
+// A slider row as solve_axis_controls (frame_lanes.hpp) wants it: the velocity, K and m_eff,
+// and an apply that refreshes the velocity.
+template <class L>
+struct SlideAxis {
+  JointBodies<L>& j;
+  SliderAxis<L> row;
+  L k, m_eff;
+  L velocity;
+  L cdot() const { return velocity; }
+  void apply(const L& impulse) {
+    apply_slider_impulse(j, row, impulse);
+    velocity = slider_velocity(j, row);
+  }
+};
+
 }  // namespace softstep::simd

@@ -90,4 +90,17 @@ SOFTSTEP_INLINE Vec2<L> block2_impulse(const Vec2<L>& cdot, const Vec2<L>& c, co
   }
 }
 
+// The change that keeps a block's accumulated impulse within a ball of radius max_impulse:
+// (accumulated + dp) scaled onto the ball when outside it, minus accumulated (a motor joint's
+// force and torque caps).
+template <class L>
+SOFTSTEP_INLINE Vec3<L> capped_change(const Vec3<L>& accumulated, const Vec3<L>& dp,
+                                      const L& max_impulse) {
+  const Vec3<L> wanted = accumulated + dp;
+  const L length = sqrt_lanes(dot(wanted, wanted));
+  const auto over = length > max_impulse;
+  const L scale = select(over, max_impulse / select(over, length, L(1.0f)), L(1.0f));
+  return scale * wanted - accumulated;
+}
+
 }  // namespace softstep::simd

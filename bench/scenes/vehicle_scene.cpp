@@ -1,0 +1,116 @@
+#include "scenes/vehicle_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace softstep::scenes {
+
+namespace {
+
+Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d s2 = size.cwiseProduct(size);
+  return Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
+         (mass / 12.0);
+}
+
+BodyId dynamic(World& world, const Eigen::Vector3d& position, double mass,
+               const Eigen::Matrix3d& inertia, const Eigen::Vector3d& velocity,
+               const Eigen::Vector3d& spin = Eigen::Vector3d::Zero()) {
+  BodyDef d;
+  d.position = position;
+  d.mass = mass;
+  d.inertia = inertia;
+  d.linear_velocity = velocity;
+  d.angular_velocity = spin;
+  return world.create_body(d);
+}
+
+Car build_car(World& world, BodyId ground, const VehicleOptions& o, double z, VehicleScene& s) {
+  Car car;
+  const double axle_height = o.wheel_radius;
+  car.start_height = axle_height + 0.3;  // the chassis centre 0.3 m above the axles, unloaded
+  const Eigen::Vector3d velocity(o.speed, 0.0, 0.0);
+  car.chassis = dynamic(world, {0.0, car.start_height, z}, o.chassis_mass,
+                        box_inertia(o.chassis_mass, {4.2, 0.6, 1.8}), velocity);
+  const double r = o.wheel_radius;
+  // A disc about its axle z: m r^2 / 2; about a diameter: m r^2 / 4.
+  const Eigen::Matrix3d wheel_inertia =
+      Eigen::Vector3d(0.25, 0.25, 0.5).asDiagonal() * (o.wheel_mass * r * r);
+  // Rolling along +x with the axle along z: the spin about z is -v / r.
+  const double rolling = -o.speed / r;
+  for (int k = 0; k < 4; ++k) {
+    const double x = (k < 2 ? 0.5 : -0.5) * o.wheelbase;
+    const double side = (k % 2 == 0 ? -0.5 : 0.5) * o.track;
+    const Eigen::Vector3d centre(x, axle_height, z + side);
+    car.wheels[k] = dynamic(world, centre, o.wheel_mass, wheel_inertia, velocity, {0, 0, rolling});
+    // The rail: a wheel joint from the world whose free travel is along x.
+    const JointFrames rail = frames_at(world, ground, car.wheels[k], centre,
+                                       Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ());
+    WheelJointDef on_rail;
+    on_rail.body_a = ground;
+    on_rail.body_b = car.wheels[k];
+    on_rail.frame_a = rail.a;
+    on_rail.frame_b = rail.b;
+    car.rails[k] = world.create_joint(on_rail);
+    s.joints.push_back(car.rails[k]);
+
+    const JointFrames f = frames_at(world, car.chassis, car.wheels[k], centre,
+                                    Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ());
+    WheelJointDef w;
+    w.body_a = car.chassis;
+    w.body_b = car.wheels[k];
+    w.frame_a = f.a;
+    w.frame_b = f.b;
+    w.spring.spring = Spring::soft(o.hertz, o.damping_ratio);
+    w.sprung_mass = o.chassis_mass / 4.0;
+    w.limit = {true, -0.25, 0.25};
+    w.motor = {o.motor_torque > 0.0, rolling, o.motor_torque};
+    w.steering = k < 2 ? o.steering : 0.0;
+    car.wheel_joints[k] = world.create_joint(w);
+    s.joints.push_back(car.wheel_joints[k]);
+  }
+  return car;
+}
+
+}  // namespace
+
+VehicleScene build_vehicle(World& world, const VehicleOptions& o) {
+  VehicleScene s;
+  BodyDef g;
+  g.type = BodyType::Static;
+  s.ground = world.create_body(g);
+  const double omega = 2.0 * std::numbers::pi * o.hertz;
+  s.promised_sag = 9.81 / (omega * omega);
+  for (int c = 0; c < o.cars; ++c) s.cars.push_back(build_car(world, s.ground, o, 4.0 * c, s));
+  return s;
+}
+
+Bounce measure_bounce(const std::vector<double>& samples, double rest, double dt) {
+  std::vector<double> crossings, peaks;
+  for (std::size_t i = 1; i < samples.size(); ++i) {
+    const double a = samples[i - 1] - rest, b = samples[i] - rest;
+    if (a < 0.0 && b >= 0.0) crossings.push_back((double(i) - 1.0 + a / (a - b)) * dt);
+    // A peak above rest after the first upward crossing, refined by the parabola through
+    // the three samples around it.
+    if (i + 1 < samples.size() && !crossings.empty() && b > 0.0 && b >= a &&
+        b > samples[i + 1] - rest) {
+      const double c = samples[i + 1] - rest;
+      const double curvature = a - 2.0 * b + c;
+      peaks.push_back(curvature < 0.0 ? b - (c - a) * (c - a) / (8.0 * curvature) : b);
+    }
+  }
+  Bounce out;
+  if (crossings.size() < 3 || peaks.size() < 2) return out;
+  const double period =
+      (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  // Log decrement over the first two peaks above rest (later ones sink into the noise).
+  const double delta = std::log(peaks[0] / peaks[1]);
+  out.damping_ratio = delta / std::sqrt(4.0 * std::numbers::pi * std::numbers::pi + delta * delta);
+  const double damped = 2.0 * std::numbers::pi / period;
+  out.hertz = damped / std::sqrt(1.0 - out.damping_ratio * out.damping_ratio) /
+              (2.0 * std::numbers::pi);
+  return out;
+}
+
+}  // namespace softstep::scenes
