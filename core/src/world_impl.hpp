@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -152,6 +153,8 @@ std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
 SimdWidth best_simd_width();
 bool simd_width_supported(SimdWidth width);
+// The instruction sets a width needs, as a CPU's documentation names them ("AVX2 and FMA").
+std::string simd_width_requirement(SimdWidth width);
 
 struct World::Impl {
   WorldSettings settings;
