@@ -94,6 +94,7 @@ nlohmann::json plan_json(const StepPlan& plan) {
 struct CsvRow {
   double ms;
   std::array<double, kStageCount> stages;
+  int threads;
 };
 
 }  // namespace
@@ -183,6 +184,7 @@ int profile_command(ProfileOptions o) {
   std::vector<double> step_ms;
   std::vector<std::array<double, kStageCount>> stage_ms;
   std::vector<double> wait_share;
+  long shared_steps = 0;  // steps that ran on more than one thread
   Trace trace;
   double worst_error_run = 0.0;
   const long error_every = std::max(1L, steps / 100);  // ~100 samples, outside the timed step
@@ -196,6 +198,7 @@ int profile_command(ProfileOptions o) {
       step_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
       const StepProfile& p = world.last_step_profile();
       stage_ms.push_back(p.stage_ms);
+      if (p.threads > 1) ++shared_steps;
       double waited = 0.0;
       for (double w : p.barrier_wait_ms) waited += w;
       wait_share.push_back(p.step_ms > 0.0 ? waited / (p.step_ms * p.threads) : 0.0);
@@ -205,7 +208,7 @@ int profile_command(ProfileOptions o) {
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
       }
-      if (!csv_path.empty()) csv_rows.push_back({step_ms.back(), p.stage_ms});
+      if (!csv_path.empty()) csv_rows.push_back({step_ms.back(), p.stage_ms, p.threads});
       bar.update(i + 1);
     }
   }
@@ -231,11 +234,17 @@ int profile_command(ProfileOptions o) {
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
               world.joint_count(), run.rows);
   std::printf(
-      "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, %d "
-      "thread(s), simd %s (%d lanes)%s\n",
+      "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, simd "
+      "%s (%d lanes)%s\n",
       steps, settings.substeps, settings.solve_iterations, settings.relax_iterations,
-      world.last_step_profile().threads, simd_width_name(layout.simd), layout.lanes,
-      settings.warm_start ? "" : ", no warm start");
+      simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
+  std::printf("threads          %ld of %ld steps on more than one thread (last step: %d), %s\n",
+              shared_steps, steps, world.last_step_profile().threads,
+              settings.fixed_threads
+                  ? "fixed by --threads-fixed"
+                  : ("the adaptive policy switched " +
+                     std::to_string(world.last_step_profile().thread_switches) + " times")
+                        .c_str());
   std::string per_color;
   for (std::uint32_t n : layout.joints_per_color)
     per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
@@ -284,6 +293,8 @@ int profile_command(ProfileOptions o) {
                               {"solve_iterations", settings.solve_iterations},
                               {"relax_iterations", settings.relax_iterations},
                               {"threads", world.last_step_profile().threads},
+                              {"shared_steps", shared_steps},
+                              {"thread_switches", world.last_step_profile().thread_switches},
                               {"simd", simd_width_name(layout.simd)},
                               {"ms_per_step", ms},
                               {"stage_ms", stages},
@@ -305,11 +316,11 @@ int profile_command(ProfileOptions o) {
     std::string csv = "step,ms";
     for (int k = 0; k < kStageCount; ++k)
       csv += std::string(",") + stage_name(static_cast<Stage>(k)) + "_ms";
-    csv += "\n";
+    csv += ",threads\n";
     for (std::size_t i = 0; i < csv_rows.size(); ++i) {
       csv += std::to_string(i) + "," + format_number(csv_rows[i].ms);
       for (double v : csv_rows[i].stages) csv += "," + format_number(v);
-      csv += "\n";
+      csv += "," + std::to_string(csv_rows[i].threads) + "\n";
     }
     write_file(csv_path, csv);
   }

@@ -14,6 +14,7 @@
 #include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"
 #include "solver/joint_batches.hpp"
+#include "thread_policy.hpp"
 
 namespace softstep {
 
@@ -183,10 +184,7 @@ struct World::Impl {
   bool joints_without_history = false;
   // Chooses one thread or all for each step from how fast recent steps ran with each.
   // Results do not depend on the count, so it may change at any step.
-  struct ThreadPolicy {
-    double ms[2] = {0.0, 0.0};  // recent step time with one thread [0] and with all [1]; 0 unknown
-    long steps = 0;
-  } thread_policy;
+  ThreadPolicy thread_policy;  // one thread or all, for steps large enough to share
   TaskCallbacks tasks;  // the host's job system; enqueue == nullptr: OpenMP
   bool profiling = false;
   StepProfile profile;  // of the last step, while profiling
