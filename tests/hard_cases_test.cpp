@@ -7,6 +7,8 @@
 
 #include <ostream>
 
+#include "simd_widths.hpp"
+
 namespace softstep::scenes {
 namespace {
 
@@ -46,7 +48,7 @@ std::vector<Param> params() {
       v.push_back({i, SimdWidth::Best});
       continue;
     }
-    for (SimdWidth w : {SimdWidth::Scalar, SimdWidth::Sse, SimdWidth::Avx2}) v.push_back({i, w});
+    for (SimdWidth w : test::kEveryWidth) v.push_back({i, w});
   }
   return v;
 }

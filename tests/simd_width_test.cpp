@@ -1,5 +1,5 @@
 // The kernels are written once over the lane type, and fusion is a build-wide choice, so the
-// scalar, SSE and AVX2 paths must give bit-identical worlds (DESIGN.md, "Kernels are written
+// scalar, SSE, AVX2 and AVX-512 paths must give bit-identical worlds (DESIGN.md, "Kernels are written
 // once").
 #include <gtest/gtest.h>
 
@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "scenes/chain_scene.hpp"
+#include "simd_widths.hpp"
 
 namespace softstep {
 namespace {
@@ -40,13 +41,10 @@ TEST_P(SimdWidths, ChainIsBitIdenticalAcrossWidths) {
   const Variant v = GetParam();
   const std::uint64_t scalar = run_chain(SimdWidth::Scalar, v, 1000, 300);
   int compared = 0;
-  for (SimdWidth w : {SimdWidth::Sse, SimdWidth::Avx2}) {
-    try {
-      EXPECT_EQ(run_chain(w, v, 1000, 300), scalar) << v.name << " width " << static_cast<int>(w);
-      ++compared;
-    } catch (const InvalidArgument&) {
-      // this CPU lacks the width; the portable CI job still compares the rest
-    }
+  for (SimdWidth w : test::kEveryWidth) {
+    if (w == SimdWidth::Scalar || !test::cpu_runs(w)) continue;
+    EXPECT_EQ(run_chain(w, v, 1000, 300), scalar) << v.name << " width " << simd_width_name(w);
+    ++compared;
   }
   EXPECT_GT(compared, 0) << "no wide path available to compare";
 }
@@ -60,9 +58,11 @@ INSTANTIATE_TEST_SUITE_P(
                               "soft_distance"}),
     [](const ::testing::TestParamInfo<Variant>& p) { return std::string(p.param.name); });
 
-// The widths really differ in layout: the same chain packs into 1-, 4- and 8-lane groups.
+// The widths really differ in layout: the same chain packs into 1-, 4-, 8- and 16-lane groups.
 TEST(SimdWidths, LayoutReportsTheLaneCount) {
-  for (auto [width, lanes] : {std::pair{SimdWidth::Scalar, 1}, std::pair{SimdWidth::Avx2, 8}}) {
+  for (auto [width, lanes] : {std::pair{SimdWidth::Scalar, 1}, std::pair{SimdWidth::Sse, 4},
+                              std::pair{SimdWidth::Avx2, 8}, std::pair{SimdWidth::Avx512, 16}}) {
+    if (!test::cpu_runs(width)) continue;
     WorldSettings s;
     s.simd = width;
     World world(s);
@@ -74,6 +74,30 @@ TEST(SimdWidths, LayoutReportsTheLaneCount) {
     EXPECT_EQ(layout.colors_used, 2);
     EXPECT_EQ(layout.overflow_joints, 0u);
   }
+}
+
+// A width this CPU lacks is refused when the world is made, naming the field, the width and
+// the instruction set that is missing; the widths it has build a world.
+TEST(SimdWidths, AWidthTheCpuLacksIsRefusedNamingWhatItLacks) {
+  const char* const isa[] = {"", "SSE4.2", "AVX2", "AVX-512"};
+  int refused = 0;
+  for (int i = 0; i < 4; ++i) {
+    const SimdWidth w = test::kEveryWidth[i];
+    WorldSettings s;
+    s.simd = w;
+    try {
+      World world(s);
+      EXPECT_EQ(world.solver_layout().simd, w);
+    } catch (const InvalidArgument& e) {
+      ++refused;
+      const std::string message = e.what();
+      EXPECT_NE(message.find("WorldSettings.simd"), std::string::npos) << message;
+      EXPECT_NE(message.find(simd_width_name(w)), std::string::npos) << message;
+      EXPECT_NE(message.find(std::string("this CPU lacks ") + isa[i]), std::string::npos)
+          << message;
+    }
+  }
+  if (refused == 0) GTEST_SKIP() << "this CPU has every width: no refusal to check";
 }
 
 }  // namespace
@@ -100,14 +124,11 @@ TEST(Threads, TwoThreadsAreBitIdenticalToOneAtEveryWidth) {
     return world.state_hash();
   };
   const std::uint64_t reference = run(1, SimdWidth::Scalar);
-  for (SimdWidth w : {SimdWidth::Scalar, SimdWidth::Sse, SimdWidth::Avx2}) {
-    try {
-      EXPECT_EQ(run(2, w), reference) << simd_width_name(w);
-      EXPECT_EQ(run(1, w), reference) << simd_width_name(w);
-      EXPECT_EQ(run(0, w), reference) << simd_width_name(w);  // 0: all of the machine's cores
-    } catch (const InvalidArgument&) {
-      // width not available on this CPU
-    }
+  for (SimdWidth w : test::kEveryWidth) {
+    if (!test::cpu_runs(w)) continue;
+    EXPECT_EQ(run(2, w), reference) << simd_width_name(w);
+    EXPECT_EQ(run(1, w), reference) << simd_width_name(w);
+    EXPECT_EQ(run(0, w), reference) << simd_width_name(w);  // 0: all of the machine's cores
   }
 }
 

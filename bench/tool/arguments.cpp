@@ -44,7 +44,7 @@ CLI::Validator whole_in(long min, long max) {
 }
 
 const std::vector<std::string>& simd_names() {
-  static const std::vector<std::string> names{"best", "scalar", "sse", "avx2"};
+  static const std::vector<std::string> names{"best", "scalar", "sse", "avx2", "avx512"};
   return names;
 }
 
@@ -52,6 +52,7 @@ SimdWidth parse_simd(const std::string& name) {
   if (name == "scalar") return SimdWidth::Scalar;
   if (name == "sse") return SimdWidth::Sse;
   if (name == "avx2") return SimdWidth::Avx2;
+  if (name == "avx512") return SimdWidth::Avx512;
   return SimdWidth::Best;
 }
 

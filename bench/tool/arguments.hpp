@@ -31,7 +31,7 @@ CLI::Validator whole_in(long min, long max);
 
 // The SIMD width names the options accept.
 const std::vector<std::string>& simd_names();
-// "best", "scalar", "sse" or "avx2" (the option's check has accepted it).
+// "best", "scalar", "sse", "avx2" or "avx512" (the option's check has accepted it).
 SimdWidth parse_simd(const std::string& name);
 
 }  // namespace softstep::tool

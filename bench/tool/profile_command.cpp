@@ -149,11 +149,17 @@ int profile_command(ProfileOptions o) {
   std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
               world.joint_count(), run.rows);
   std::printf(
-      "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, %d "
-      "thread(s), simd %s (%d lanes)%s\n",
+      "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, simd "
+      "%s (%d lanes)%s\n",
       steps, settings.substeps, settings.solve_iterations, settings.relax_iterations,
-      world.last_step_profile().threads, simd_width_name(layout.simd), layout.lanes,
-      settings.warm_start ? "" : ", no warm start");
+      simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
+  const std::string policy =
+      settings.fixed_threads ? "fixed by --threads-fixed"
+                             : "the adaptive policy switched " +
+                                   std::to_string(world.last_step_profile().thread_switches) +
+                                   " times";
+  std::printf("threads          %ld of %ld steps on more than one thread (last step: %d), %s\n",
+              samples.shared_steps, steps, world.last_step_profile().threads, policy.c_str());
   std::string per_color;
   for (std::uint32_t n : layout.joints_per_color)
     per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
@@ -201,6 +207,8 @@ int profile_command(ProfileOptions o) {
                               {"solve_iterations", settings.solve_iterations},
                               {"relax_iterations", settings.relax_iterations},
                               {"threads", world.last_step_profile().threads},
+                              {"shared_steps", samples.shared_steps},
+                              {"thread_switches", world.last_step_profile().thread_switches},
                               {"simd", simd_width_name(layout.simd)},
                               {"ms_per_step", ms},
                               {"stage_ms", stage_json(stage_median)},
@@ -220,7 +228,7 @@ int profile_command(ProfileOptions o) {
                               {"state_hash", hash}};
     write_file(json_path, j.dump(2) + "\n");
   }
-  if (!csv_path.empty()) write_file(csv_path, steps_csv(samples.step_ms, samples.stage_ms));
+  if (!csv_path.empty()) write_file(csv_path, steps_csv(samples.step_ms, samples.stage_ms, samples.threads));
   if (!trace_path.empty()) write_file(trace_path, samples.trace.text());
   return 0;
 }

@@ -115,7 +115,7 @@ int profile_recording(const ProfileOptions& o) {
                               {"state_hash", hash}};
     write_file(o.json_path, j.dump(2) + "\n");
   }
-  if (!o.csv_path.empty()) write_file(o.csv_path, steps_csv(samples.step_ms, samples.stage_ms));
+  if (!o.csv_path.empty()) write_file(o.csv_path, steps_csv(samples.step_ms, samples.stage_ms, samples.threads));
   if (!o.trace_path.empty()) write_file(o.trace_path, samples.trace.text());
   return 0;
 }

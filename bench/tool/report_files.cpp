@@ -91,6 +91,8 @@ double median(std::vector<double> v) {
 void StepSamples::add(const StepProfile& p, double ms, double start_us) {
   step_ms.push_back(ms);
   stage_ms.push_back(p.stage_ms);
+  threads.push_back(p.threads);
+  if (p.threads > 1) ++shared_steps;
   double waited = 0.0;
   for (double w : p.barrier_wait_ms) waited += w;
   wait_share.push_back(p.step_ms > 0.0 ? waited / (p.step_ms * p.threads) : 0.0);
@@ -124,15 +126,16 @@ nlohmann::json stage_json(const StageTimes& medians) {
   return stages;
 }
 
-std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages) {
+std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages,
+                      const std::vector<int>& threads) {
   std::string csv = "step,ms";
   for (int k = 0; k < kStageCount; ++k)
     csv += std::string(",") + stage_name(static_cast<Stage>(k)) + "_ms";
-  csv += "\n";
-  for (std::size_t i = 0; i < step_ms.size() && i < stages.size(); ++i) {
+  csv += ",threads\n";
+  for (std::size_t i = 0; i < step_ms.size() && i < stages.size() && i < threads.size(); ++i) {
     csv += std::to_string(i) + "," + format_number(step_ms[i]);
     for (double v : stages[i]) csv += "," + format_number(v);
-    csv += "\n";
+    csv += "," + std::to_string(threads[i]) + "\n";
   }
   return csv;
 }

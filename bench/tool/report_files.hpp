@@ -20,7 +20,9 @@ using StageTimes = std::array<double, kStageCount>;
 StageTimes stage_medians(const std::vector<StageTimes>& steps);
 void print_stage_table(const StageTimes& medians, double step_ms);
 nlohmann::json stage_json(const StageTimes& medians);
-std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages);
+// `threads`: each step's thread count (the last column).
+std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages,
+                      const std::vector<int>& threads);
 
 // A number with 10 significant digits for CSV, "null" when it is not finite.
 std::string format_number(double value);
@@ -47,6 +49,8 @@ struct StepSamples {
   std::vector<double> step_ms;
   std::vector<StageTimes> stage_ms;
   std::vector<double> wait_share;
+  std::vector<int> threads;  // the thread count each step ran on
+  long shared_steps = 0;     // steps on more than one thread
   Trace trace;
   // step_ms: the step's time as the caller measured it; start_us: when it started on the
   // trace's clock.

@@ -138,7 +138,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
       ->check(CLI::IsMember({"on", "off"}))
       ->type_name("LIST")
       ->capture_default_str();
-  cmd->add_option("--simd", o.simd, "SIMD widths: best, scalar, sse, avx2")
+  cmd->add_option("--simd", o.simd, "SIMD widths: best, scalar, sse, avx2, avx512")
       ->delimiter(',')
       ->check(CLI::IsMember(simd_names()))
       ->type_name("LIST")

@@ -47,27 +47,24 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
 // barrier per colour per stage (0.4-1 us each on an idle machine, TOOLCHAIN.md) costs more
 // than the second core gives.
 //
-// Otherwise whichever of one thread or all ran recent steps faster, trying the other every
-// kProbeEvery steps. When another process holds a core, a step shorter than a scheduler
-// time slice waits milliseconds at a barrier whenever one of its threads is descheduled: a
-// 10,000-link step took 5x longer on two threads than on one. Results are bit-identical for
-// any count, so switching never changes the simulation.
-int step_threads(World::Impl& w) {
+// Otherwise whichever of one thread or all ran recent steps faster (thread_policy.hpp). When
+// another process holds a core, a step shorter than a scheduler time slice waits milliseconds
+// at a barrier whenever one of its threads is descheduled: a 10,000-link step took 5x longer
+// on two threads than on one. Results are bit-identical for any count, so switching never
+// changes the simulation.
+struct ThreadChoice {
+  int threads;
+  bool by_policy;  // the policy chose: it learns from this step's time
+};
+ThreadChoice step_threads(World::Impl& w) {
   constexpr std::size_t kMinWorkToShare = 4096;
-  constexpr long kProbeEvery = 64;
   static const int machine_cores = std::max(1, omp_get_num_procs());
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
-  if (w.settings.fixed_threads) return allowed;  // the user's count, not the policy's
+  if (w.settings.fixed_threads) return {allowed, false};  // the user's count, not the policy's
   // Sleeping bodies and joints are no work.
   const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3;
-  if (allowed <= 1 || work < kMinWorkToShare) return 1;
-  World::Impl::ThreadPolicy& p = w.thread_policy;
-  ++p.steps;
-  if (p.ms[1] == 0.0) return allowed;  // measure all threads first
-  if (p.ms[0] == 0.0) return 1;        // then one
-  const bool all_faster = p.ms[1] < p.ms[0];
-  const bool probe = p.steps % kProbeEvery == 0;
-  return all_faster != probe ? allowed : 1;
+  if (allowed <= 1 || work < kMinWorkToShare) return {1, false};
+  return {w.thread_policy.all_threads() ? allowed : 1, true};
 }
 
 // A step's threads on the host's job system: workers 1 .. n-1 are enqueued, the calling
@@ -91,11 +88,6 @@ void run_on_host_tasks(const TaskCallbacks& tasks, int threads, Run& run) {
   }
   run(solver::Share{0, threads, nullptr, &barrier});
   for (void* handle : handles) tasks.finish(handle, tasks.user_context);
-}
-
-void record_step_time(World::Impl& w, int threads, double ms) {
-  double& recent = w.thread_policy.ms[threads > 1 ? 1 : 0];
-  recent = recent == 0.0 ? ms : 0.5 * (recent + ms);
 }
 
 }  // namespace
@@ -257,6 +249,9 @@ void World::step(double dt) {
                            validation::format(validation::kMaxSubstep) + "] s");
   }
   const float h = static_cast<float>(substep);
+  // A step that colours and packs, or lists the bodies anew, first touches fresh memory: its
+  // time says nothing about the thread count.
+  const bool fresh_content = !w.joints_packed || !w.bodies_listed;
   w.build_plan();
   const simd::SubstepContext ctx = make_context(s, h);
   // Serial: the geometric inertia (joints add into shared bodies).
@@ -358,7 +353,8 @@ void World::step(double dt) {
     }
     if (planned(PlanStage::Store)) stage(Stage::Store, [&] { w.finalize_bodies(share); });
   };
-  const int threads = step_threads(w);
+  const ThreadChoice choice = step_threads(w);
+  const int threads = choice.threads;
   if (profiling) {
     events.assign(static_cast<std::size_t>(threads), {});
     waits.assign(static_cast<std::size_t>(threads), 0.0);
@@ -378,11 +374,12 @@ void World::step(double dt) {
       run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr, &*barrier});
     }
   }
-  if (threads > 1 || w.settings.threads != 1) record_step_time(w, threads, since_start() * 1e-3);
+  if (choice.by_policy) w.thread_policy.record(since_start() * 1e-3, fresh_content);
   if (profiling) {
     StepProfile& p = w.profile;
     p.step_ms = since_start() * 1e-3;
     p.threads = threads;
+    p.thread_switches = w.thread_policy.switches();
     p.stage_ms.fill(0.0);
     for (const StageEvent& e : events[0])
       p.stage_ms[static_cast<std::size_t>(e.stage)] += (e.end_us - e.start_us) * 1e-3;

@@ -8,7 +8,7 @@
 namespace softstep {
 
 void World::Impl::build_plan() {
-  if (!joints_packed || !bodies_listed) thread_policy = {};  // new content: measure afresh
+  if (!joints_packed || !bodies_listed) thread_policy.restart();  // new content: measure afresh
   if (!joints_packed) {
     lane_solver->pack(coloring, joints, bodies, settings.specialize);
     joints_packed = true;

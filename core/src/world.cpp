@@ -22,7 +22,7 @@ SimdWidth resolve_width(std::string_view call, SimdWidth requested) {
   if (requested == SimdWidth::Best) return best_simd_width();
   if (!simd_width_supported(requested)) {
     validation::reject(call, "WorldSettings.simd", simd_width_name(requested),
-                       "this CPU lacks that instruction set (or FMA, which this build uses)");
+                       "this CPU lacks " + simd_width_requirement(requested));
   }
   return requested;
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"
 #include "solver/joint_batches.hpp"
+#include "thread_policy.hpp"
 
 namespace softstep {
 
@@ -156,6 +158,8 @@ std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
 SimdWidth best_simd_width();
 bool simd_width_supported(SimdWidth width);
+// The instruction sets a width needs, as a CPU's documentation names them ("AVX2 and FMA").
+std::string simd_width_requirement(SimdWidth width);
 
 struct World::Impl {
   WorldSettings settings;
@@ -180,10 +184,7 @@ struct World::Impl {
   bool joints_without_history = false;
   // Chooses one thread or all for each step from how fast recent steps ran with each.
   // Results do not depend on the count, so it may change at any step.
-  struct ThreadPolicy {
-    double ms[2] = {0.0, 0.0};  // recent step time with one thread [0] and with all [1]; 0 unknown
-    long steps = 0;
-  } thread_policy;
+  ThreadPolicy thread_policy;  // one thread or all, for steps large enough to share
   TaskCallbacks tasks;  // the host's job system; enqueue == nullptr: OpenMP
   bool profiling = false;
   StepProfile profile;  // of the last step, while profiling

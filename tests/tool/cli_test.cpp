@@ -48,7 +48,7 @@ TEST(ToolCli, BadValuesNameTheOptionAndTheValue) {
       {"profile chain --links ten", "--links", "ten"},
       {"profile --hertz nan", "--hertz", "nan"},
       {"profile --hertz -3", "--hertz", "-3"},
-      {"profile --simd avx512", "--simd", "avx512"},
+      {"profile --simd avx1024", "--simd", "avx1024"},
       {"profile --joint hinge", "--joint", "hinge"},
       {"profile grid --links 3", "--links", "grid"},
       {"profile bridge --span 4 --loads 5", "--loads", "5"},

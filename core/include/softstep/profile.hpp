@@ -33,7 +33,11 @@ struct StepProfile {
       stage_ms{};  // wall time per stage on thread 0, summed over sub-steps
   std::vector<std::vector<StageEvent>> thread_events;  // per thread, in order
   std::vector<double> barrier_wait_ms;                 // per thread: time spent waiting at barriers
-  int threads = 1;
+  int threads = 1;  // threads this step ran on (the adaptive policy's choice, or the setting)
+  // How often the adaptive policy changed the thread count since the world was made (its
+  // trials of the other count included): a count that keeps rising means two threads and
+  // one run about equally fast, or another process takes a core from time to time.
+  long thread_switches = 0;
 };
 
 }  // namespace softstep

@@ -11,9 +11,10 @@ enum class SimdWidth {
   Scalar,  // 1 lane
   Sse,     // 4 lanes, SSE4.2
   Avx2,    // 8 lanes, AVX2
+  Avx512,  // 16 lanes, AVX-512 (F, CD, DQ, BW, VL: x86-64-v4)
 };
 
-// "best", "scalar", "sse" or "avx2".
+// "best", "scalar", "sse", "avx2" or "avx512".
 const char* simd_width_name(SimdWidth width);
 
 struct WorldSettings {

@@ -31,7 +31,7 @@ struct WorldAnchors {
 };
 WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j);
 
-// The lane functions of kind K for the three widths, in the kind's .cpp.
+// The lane functions of kind K for the four widths, in the kind's .cpp.
 #define SOFTSTEP_INSTANTIATE_KIND_LANES(K, W)                         \
   template void K::fill_lane<W>(K::Group<W>&, int, const JointSlot&); \
   template void K::read_impulses<W>(const K::Group<W>&, int, float*); \
@@ -42,10 +42,14 @@ WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j);
                                        const std::vector<BodySlot>&); \
   template void K::write_step_start<4>(K::Group<4>&, int, JointSlot&, \
                                        const std::vector<BodySlot>&); \
-  template void K::write_step_start<8>(K::Group<8>&, int, JointSlot&, const std::vector<BodySlot>&);
+  template void K::write_step_start<8>(K::Group<8>&, int, JointSlot&,  \
+                                       const std::vector<BodySlot>&); \
+  template void K::write_step_start<16>(K::Group<16>&, int, JointSlot&, \
+                                        const std::vector<BodySlot>&);
 #define SOFTSTEP_INSTANTIATE_KIND(K)    \
   SOFTSTEP_INSTANTIATE_KIND_LANES(K, 1) \
   SOFTSTEP_INSTANTIATE_KIND_LANES(K, 4) \
-  SOFTSTEP_INSTANTIATE_KIND_LANES(K, 8)
+  SOFTSTEP_INSTANTIATE_KIND_LANES(K, 8) \
+  SOFTSTEP_INSTANTIATE_KIND_LANES(K, 16)
 
 }  // namespace softstep

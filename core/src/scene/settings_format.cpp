@@ -39,7 +39,7 @@ constexpr Field<bool> kSwitches[] = {
 };
 
 constexpr SimdWidth kWidths[] = {SimdWidth::Best, SimdWidth::Scalar, SimdWidth::Sse,
-                                 SimdWidth::Avx2};
+                                 SimdWidth::Avx2, SimdWidth::Avx512};
 
 }  // namespace
 
@@ -59,7 +59,7 @@ WorldSettings read_settings(ObjectReader& fields) {
   }
   if (!known)
     fail(fields.source(), fields.path_of("simd"),
-         "expected \"best\", \"scalar\", \"sse\" or \"avx2\"");
+         "expected \"best\", \"scalar\", \"sse\", \"avx2\" or \"avx512\"");
   fields.no_other_keys();
   return s;
 }

@@ -22,6 +22,9 @@ struct Run {
 template <class Kind, int W>
 struct KindBatches {
   using Group = typename Kind::template Group<W>;
+  // The kernels load every field with aligned loads of W floats (64 bytes at 16 lanes).
+  static_assert(alignof(Group) >= sizeof(float) * W,
+                "declare the kind's lane group alignas(simd::kLaneAlign<W>)");
   std::vector<Group> groups;
   std::vector<Run> runs;
 };

@@ -12,4 +12,7 @@ using SseLane = xsimd::batch<float, xsimd::sse4_2>;
 #if defined(__AVX2__)
 using Avx2Lane = xsimd::batch<float, xsimd::avx2>;
 #endif
+#if defined(__AVX512BW__)
+using Avx512Lane = xsimd::batch<float, xsimd::avx512bw>;
+#endif
 }  // namespace softstep::solver

@@ -7,7 +7,7 @@
 namespace softstep::simd {
 
 template <int W>
-struct alignas(32) BallJointGroup : JointLanes<W> {
+struct alignas(kLaneAlign<W>) BallJointGroup : JointLanes<W> {
   // Accumulated impulse of the current sub-step, N s, world frame: the warm start.
   float impulse[3][W];
 };

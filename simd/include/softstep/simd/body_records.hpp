@@ -79,6 +79,29 @@ SOFTSTEP_INLINE void transpose8(__m256 (&r)[8]) {
 }
 #endif
 
+#if defined(__AVX512F__)
+// Sixteen records as two eight-record halves, each transposed like AVX2 does, then joined:
+// row k holds field k of records 0-7 in its low and of records 8-15 in its high 256 bits.
+SOFTSTEP_INLINE __m512 join_halves(__m256 lo, __m256 hi) {
+  return _mm512_castpd_ps(
+      _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(lo)), _mm256_castps_pd(hi), 1));
+}
+SOFTSTEP_INLINE __m256 low_half(__m512 r) {
+  return _mm512_castps512_ps256(r);
+}
+// A shuffle rather than _mm512_extractf64x4_pd: gcc 12's -Wuninitialized flags the undefined
+// pass-through operand of the extract intrinsic.
+SOFTSTEP_INLINE __m256 high_half(__m512 r) {
+  return _mm512_castps512_ps256(_mm512_shuffle_f32x4(r, r, _MM_SHUFFLE(3, 2, 3, 2)));
+}
+#endif
+
+template <class L>
+inline constexpr bool kIsAvx512Batch = false;
+#if defined(__AVX512F__)
+template <class A>
+inline constexpr bool kIsAvx512Batch<xsimd::batch<float, A>> = xsimd::batch<float, A>::size == 16;
+#endif
 template <class L>
 inline constexpr bool kIsAvxBatch = false;
 template <class L>
@@ -103,6 +126,17 @@ SOFTSTEP_INLINE Rows8<L> gather_rows(const Record* records, const std::int32_t* 
   if constexpr (std::is_same_v<L, float>) {
     const float* p = reinterpret_cast<const float*>(records + index[0]);
     for (int k = 0; k < 8; ++k) out.r[k] = p[k];
+#if defined(__AVX512F__)
+  } else if constexpr (detail::kIsAvx512Batch<L>) {
+    __m256 lo[8], hi[8];
+    for (int i = 0; i < 8; ++i) {
+      lo[i] = _mm256_load_ps(reinterpret_cast<const float*>(records + index[i]));
+      hi[i] = _mm256_load_ps(reinterpret_cast<const float*>(records + index[i + 8]));
+    }
+    detail::transpose8(lo);
+    detail::transpose8(hi);
+    for (int k = 0; k < 8; ++k) out.r[k] = L(detail::join_halves(lo[k], hi[k]));
+#endif
 #if defined(__AVX__)
   } else if constexpr (detail::kIsAvxBatch<L>) {
     __m256 r[8];
@@ -146,6 +180,22 @@ SOFTSTEP_INLINE void scatter_rows(Record* records, const std::int32_t* index, co
     if (!write) return;
     float* p = reinterpret_cast<float*>(records + index[0]);
     for (int k = 0; k < 8; ++k) p[k] = rows.r[k];
+#if defined(__AVX512F__)
+  } else if constexpr (detail::kIsAvx512Batch<L>) {
+    __m256 r[2][8];
+    for (int k = 0; k < 8; ++k) {
+      r[0][k] = detail::low_half(rows.r[k]);
+      r[1][k] = detail::high_half(rows.r[k]);
+    }
+    detail::transpose8(r[0]);
+    detail::transpose8(r[1]);
+    unsigned mask = static_cast<unsigned>(static_cast<__mmask16>(write.data));
+    while (mask != 0) {
+      const int i = __builtin_ctz(mask);
+      mask &= mask - 1;
+      _mm256_store_ps(reinterpret_cast<float*>(records + index[i]), r[i >> 3][i & 7]);
+    }
+#endif
 #if defined(__AVX__)
   } else if constexpr (detail::kIsAvxBatch<L>) {
     __m256 r[8];

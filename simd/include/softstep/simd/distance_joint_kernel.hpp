@@ -12,7 +12,7 @@
 namespace softstep::simd {
 
 template <int W>
-struct alignas(32) DistanceJointGroup : JointLanes<W> {
+struct alignas(kLaneAlign<W>) DistanceJointGroup : JointLanes<W> {
   float rest_length[W];  // already clamped into [min_length, max_length]
   float min_length[W];
   float max_length[W];

@@ -11,7 +11,7 @@ namespace softstep::simd {
 // The joint frames of A and B in the world at the step start (x, y, z, w), written by core's
 // anchor pass in double; the kernels turn them by each body's rotation since (dq).
 template <int W>
-struct alignas(32) FrameLanes : AnchorLanes<W> {
+struct alignas(kLaneAlign<W>) FrameLanes : AnchorLanes<W> {
   float frame_a[4][W];
   float frame_b[4][W];
 };
@@ -41,7 +41,7 @@ inline constexpr std::uint32_t kAxisSpring = 4u;
 // plus a per-lane gap written at the step start, so that an angle kept unwrapped in double
 // (revolute) enters the float kernel only as small differences.
 template <int W>
-struct alignas(32) AxisControlLanes {
+struct alignas(kLaneAlign<W>) AxisControlLanes {
   float lower_gap[W];   // C_lower = position + lower_gap >= 0
   float upper_gap[W];   // C_upper = upper_gap - position >= 0
   float spring_gap[W];  // C_spring = position + spring_gap

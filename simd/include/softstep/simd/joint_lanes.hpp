@@ -31,7 +31,7 @@ inline constexpr JointFeatures kGeneralKernel{};
 
 // The lanes every two-body constraint starts with: who it is, its bodies, and its anchors.
 template <int W>
-struct alignas(32) AnchorLanes {
+struct alignas(kLaneAlign<W>) AnchorLanes {
   std::uint32_t id[W];  // the caller's id for the constraint in this lane, kPaddingLane if none
   std::int32_t body_a[W];
   std::int32_t body_b[W];
@@ -44,7 +44,7 @@ struct alignas(32) AnchorLanes {
 // A spring's frequency per lane and the row coefficients prepared from it once per step
 // (prepare_row_coefficients): what a row that may be rigid, soft or free per lane solves with.
 template <int W>
-struct alignas(32) SoftRowLanes {
+struct alignas(kLaneAlign<W>) SoftRowLanes {
   // Spring, constant while the joint lives: hertz +inf = rigid, 0 = free.
   float hertz[W];
   float zeta[W];
@@ -59,7 +59,7 @@ struct alignas(32) SoftRowLanes {
 
 // The ball and distance joints: anchors and one spring for all their rows.
 template <int W>
-struct alignas(32) JointLanes : AnchorLanes<W>, SoftRowLanes<W> {};
+struct alignas(kLaneAlign<W>) JointLanes : AnchorLanes<W>, SoftRowLanes<W> {};
 
 template <class L, JointFeatures F = kGeneralKernel, int W>
 SOFTSTEP_INLINE void prepare_row_coefficients(SoftRowLanes<W>& g, const SubstepContext& ctx) {

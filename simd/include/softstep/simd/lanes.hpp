@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <xsimd/xsimd.hpp>
 #if SOFTSTEP_USE_FMA
@@ -55,6 +56,12 @@ inline constexpr int kWidth = LaneTraits<L>::width;
 template <class L>
 using MaskOf = typename LaneTraits<L>::Mask;
 
+// The alignment of a lane group of W lanes: every field is an array of W 4-byte values loaded
+// with aligned loads, so a 16-lane group needs 64 bytes (a whole AVX-512 register); narrower
+// groups keep the 32 bytes they always had, so their layout does not change.
+template <int W>
+inline constexpr std::size_t kLaneAlign = W * 4 > 32 ? static_cast<std::size_t>(W) * 4 : 32;
+
 // ---- scalar lane -------------------------------------------------------------------------
 
 SOFTSTEP_INLINE void store_lanes(float* p, float v) {
@@ -94,7 +101,11 @@ SOFTSTEP_INLINE xsimd::batch<float, A> fmadd(const xsimd::batch<float, A>& a,
                                              const xsimd::batch<float, A>& b,
                                              const xsimd::batch<float, A>& c) {
 #if SOFTSTEP_USE_FMA
-  if constexpr (xsimd::batch<float, A>::size == 8) {
+  if constexpr (xsimd::batch<float, A>::size == 16) {
+#if defined(__AVX512F__)
+    return _mm512_fmadd_ps(a, b, c);
+#endif
+  } else if constexpr (xsimd::batch<float, A>::size == 8) {
     return _mm256_fmadd_ps(a, b, c);
   } else {
     static_assert(xsimd::batch<float, A>::size == 4);

@@ -20,7 +20,7 @@ inline constexpr std::uint32_t kMotorAngularSoft = 2u;
 
 // A weld's lanes (frames, the two halves' springs, point and rotation impulses) and the caps.
 template <int W>
-struct alignas(32) MotorJointGroup : WeldJointGroup<W> {
+struct alignas(kLaneAlign<W>) MotorJointGroup : WeldJointGroup<W> {
   float max_force[W];   // N
   float max_torque[W];  // N m
   // Prepared once per step: the caps times the sub-step.

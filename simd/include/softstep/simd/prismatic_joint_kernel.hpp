@@ -12,7 +12,7 @@
 namespace softstep::simd {
 
 template <int W>
-struct alignas(32) PrismaticJointGroup : FrameLanes<W> {
+struct alignas(kLaneAlign<W>) PrismaticJointGroup : FrameLanes<W> {
   AxisControlLanes<W> axis;
   float lateral_impulse[2][W];
   float lock_impulse[3][W];

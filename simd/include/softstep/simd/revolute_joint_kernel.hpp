@@ -14,7 +14,7 @@
 namespace softstep::simd {
 
 template <int W>
-struct alignas(32) RevoluteJointGroup : FrameLanes<W> {
+struct alignas(kLaneAlign<W>) RevoluteJointGroup : FrameLanes<W> {
   AxisControlLanes<W> axis;
   float angle_start[W];  // the hinge angle at the step start, wrapped into [-pi, pi]
   float point_impulse[3][W];

@@ -42,7 +42,7 @@ inline constexpr std::uint32_t kSwingTwistMotor = 8u;
 inline constexpr float kTwistSingularGap = 1.0e-3f;
 
 template <int W>
-struct alignas(32) SwingTwistJointGroup : FrameLanes<W> {
+struct alignas(kLaneAlign<W>) SwingTwistJointGroup : FrameLanes<W> {
   float target_a[4][W];     // frame_A turned by the spring's target, world, step start
   float inv_cone_x_sq[W];   // 1 / sin^2(b/2): b, the largest swing towards y (about x)
   float inv_cone_y_sq[W];   // 1 / sin^2(a/2): a, the largest swing towards x (about y)

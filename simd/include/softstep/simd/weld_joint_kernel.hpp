@@ -15,7 +15,7 @@ inline constexpr std::uint32_t kWeldAngularSoft = 4u;
 inline constexpr std::uint32_t kWeldAngularFree = 8u;
 
 template <int W>
-struct alignas(32) WeldJointGroup : FrameLanes<W> {
+struct alignas(kLaneAlign<W>) WeldJointGroup : FrameLanes<W> {
   SoftRowLanes<W> linear;
   SoftRowLanes<W> angular;
   float point_impulse[3][W];

@@ -34,7 +34,7 @@ namespace softstep::simd {
 // limits (solved by solve_axis_controls), kAxisSpring the suspension spring and kAxisMotor the
 // spin motor, both solved here (the spring with the sprung mass, the motor about the axle).
 template <int W>
-struct alignas(32) WheelJointGroup : FrameLanes<W> {
+struct alignas(kLaneAlign<W>) WheelJointGroup : FrameLanes<W> {
   // Limits, the spring's gap and impulse, the motor's speed, max torque and impulse; its
   // spring_bias_rate holds bias_rate and spring_mass_scale holds gamma' (see the top).
   AxisControlLanes<W> axis;
