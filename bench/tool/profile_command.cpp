@@ -56,6 +56,10 @@ void print_plan(const StepPlan& plan) {
   std::printf("  stages         %s\n", stages.empty() ? "none" : stages.c_str());
   std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
               plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
+  std::printf("  solver         %s: %zu tree island(s) exact (%zu joints), iterative: %zu with a "
+              "loop, %zu with other joints\n",
+              solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints,
+              plan.loop_islands, plan.other_islands);
   std::printf("  kernel variants (type, features: batches, joints)\n");
   for (const PlanKernel& k : plan.kernels) {
     std::printf("    %-9s %-40s %8u batches %9u joints\n", joint_type_name(k.type),
@@ -66,6 +70,11 @@ void print_plan(const StepPlan& plan) {
 nlohmann::json plan_json(const StepPlan& plan) {
   nlohmann::json j;
   j["specialized"] = plan.specialized ? 1 : 0;
+  j["solver"] = {{"mode", solver_mode_name(plan.solver)},
+                 {"tree_islands", plan.tree_islands},
+                 {"tree_joints", plan.tree_joints},
+                 {"loop_islands", plan.loop_islands},
+                 {"other_islands", plan.other_islands}};
   j["stages"] = nlohmann::json::array();
   for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
   j["effects"] = {{"gravity", plan.gravity},
@@ -121,6 +130,11 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--simd", o.simd, "SIMD width")
       ->check(CLI::IsMember(simd_names()))
       ->capture_default_str();
+  cmd->add_option("--solver", o.solver,
+                  "iterative, or exact for islands whose joints form a tree (direct-for-trees, "
+                  "auto)")
+      ->check(CLI::IsMember(solver_names()))
+      ->capture_default_str();
   cmd->add_flag("--no-warm-start", o.no_warm_start, "start every sub-step's impulses at zero");
   cmd->add_flag("--no-sleep", o.no_sleep, "islands at rest stay awake");
   cmd->add_flag("--general", o.general,
@@ -158,6 +172,7 @@ int profile_command(ProfileOptions o) {
   if (given("--threads")) settings.threads = o.settings.threads;
   if (o.threads_fixed) settings.fixed_threads = true;
   if (given("--simd")) settings.simd = parse_simd(o.simd);
+  if (given("--solver")) settings.solver = parse_solver(o.solver);
   if (o.no_warm_start) settings.warm_start = false;
   if (o.no_sleep) settings.sleeping = false;
   if (o.general) settings.specialize = false;
