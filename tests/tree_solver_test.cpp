@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 #include <vector>
 
@@ -255,4 +256,27 @@ TEST(TreeSolve, RejectsAnUnknownSolverMode) {
 }
 
 }  // namespace
+}  // namespace softstep
+namespace softstep {
+TEST(TreeSolveDebug, WhipErrorOverTime) {
+  WorldSettings settings;
+  settings.solver = SolverMode::DirectForTrees;
+  if (const char* ss = std::getenv("SS")) settings.substeps = std::atoi(ss);
+  if (std::getenv("NOGS")) settings.geometric_stiffness = false;
+  World world(settings);
+  scenes::ChainOptions o;
+  o.links = 1000;
+  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  for (int i = 1; i <= 600; ++i) {
+    world.step(1.0 / 60.0);
+    const scenes::JointErrors e = scenes::joint_errors(world, scene.joints);
+    double wmax = 0.0, vmax = 0.0;
+    for (BodyId b : scene.links[0]) {
+      wmax = std::max(wmax, world.body(b).angular_velocity.norm());
+      vmax = std::max(vmax, world.body(b).linear_velocity.norm());
+    }
+    if (e.max > 0.01 || i % 60 == 0)
+      std::printf("step %d max %.4g rms %.3g wmax %.3g vmax %.3g\n", i, e.max, e.rms, wmax, vmax);
+  }
+}
 }  // namespace softstep

@@ -147,6 +147,34 @@ void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<Bo
   }
 }
 
+// After the relax: J dx = -C with the relax pass's factor (the same positions and Jacobians),
+// each row's C bounded by max_correction_speed * h as the biased pass bounds its speed; dx
+// moves the bodies' deltas (linear, then a first-order turn), not their velocities.
+void TreeSolver::project_positions(Island& island, SolverBodies& sb,
+                                   const simd::SubstepContext& ctx) {
+  const double step = double(ctx.max_correction_speed) * double(ctx.h);
+  for (std::size_t k = 0; k < island.joints.size(); ++k) {
+    island.rows[k].residual = island.error[k].cwiseMax(-step).cwiseMin(step);
+  }
+  // dp holds the position multipliers here; the impulses were already added.
+  std::vector<Eigen::Vector3d>& multipliers = island.dp;
+  island.system.solve(island.rows, island.dv, multipliers);
+  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+    simd::DeltaRecord& d = sb.delta[island.bodies[b] + 1];
+    const Vec6& dx = island.dv[b];
+    for (int k = 0; k < 3; ++k) d.dp[k] = static_cast<float>(double(d.dp[k]) + dx[k]);
+    const Eigen::Quaterniond q(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
+    const Eigen::Quaterniond turn(0.0, 0.5 * dx[3], 0.5 * dx[4], 0.5 * dx[5]);
+    Eigen::Quaterniond moved = q;
+    moved.coeffs() += (turn * q).coeffs();
+    moved.normalize();
+    d.dq[0] = static_cast<float>(moved.x());
+    d.dq[1] = static_cast<float>(moved.y());
+    d.dq[2] = static_cast<float>(moved.z());
+    d.dq[3] = static_cast<float>(moved.w());
+  }
+}
+
 void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& joints,
                               const std::vector<BodySlot>& bodies, SolverBodies& sb,
                               LaneSolver& lanes, const simd::SubstepContext& ctx,
@@ -165,6 +193,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   }
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
+  island.error.resize(island.joints.size());
   for (std::size_t k = 0; k < island.joints.size(); ++k) {
     const JointSlot& j = joints[island.joints[k]];
     const BodySlot& a = bodies[j.body_a];
@@ -202,8 +231,9 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
         t.gamma(0, 0) = 1.0;
       }
     }
-    Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
-    for (int r = t.rows; r < 3; ++r) bias[r] = 0.0;  // padding rows (distance joints)
+    for (int r = t.rows; r < 3; ++r) c[r] = 0.0;  // padding rows (distance joints)
+    island.error[k] = c;
+    const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
   }
   island.system.solve(island.mass, island.rows, island.dv, island.dp);
@@ -221,6 +251,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
                             static_cast<float>(island.dp[k][2])};
     lanes.add_impulses(island.joints[k], delta);
   }
+  if (!with_bias) project_positions(island, sb, ctx);
 }
 
 }  // namespace softstep::solver

@@ -74,53 +74,69 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   }
   body_block_.resize(bodies);
   body_factor_.resize(bodies);
+  body_transfer_.resize(bodies);
   body_rhs_.resize(bodies);
   joint_inverse_.resize(joints.size());
   joint_rhs_.resize(joints.size());
   return true;
 }
 
-void TreeSystem::solve(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints,
-                       std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp) {
-  // The blocks of H and the right side; each becomes its reduced block's inverse when its node
-  // is eliminated.
-  for (std::size_t b = 0; b < body_block_.size(); ++b) {
-    body_block_[b] = mass[b];
-    body_rhs_[b].setZero();
-  }
+void TreeSystem::factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints) {
+  // The blocks of H; each becomes its reduced block (a body's Cholesky factor, a joint's
+  // inverse) when its node is eliminated.
+  for (std::size_t b = 0; b < body_block_.size(); ++b) body_block_[b] = mass[b];
   for (std::size_t j = 0; j < joints.size(); ++j) {
     Eigen::Matrix3d d = -joints[j].gamma;
-    Eigen::Vector3d rhs = -joints[j].residual;
     for (int r = joints[j].rows; r < 3; ++r) {
       d.row(r).setZero();
       d.col(r).setZero();
       d(r, r) = -1.0;
-      rhs[r] = 0.0;
     }
     joint_inverse_[j] = d;
-    joint_rhs_[j] = rhs;
   }
   const std::size_t n = order_.size();
   // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree.
-  for (std::size_t k = 0; k + 1 < n; ++k) {
+  for (std::size_t k = 0; k < n; ++k) {
     const TreeNode& node = order_[k];
-    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
     if (node.joint) {
       // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
-      const Eigen::Matrix3d inv = joint_inverse_[node.index].inverse();
-      joint_inverse_[node.index] = inv;
+      joint_inverse_[node.index] = joint_inverse_[node.index].inverse().eval();
+      if (node.parent < 0) continue;
+      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
       const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
-      const Eigen::Matrix<double, 3, 6> inv_j = inv * jac;
-      body_block_[parent.index].noalias() -= jac.transpose() * inv_j;
-      body_rhs_[parent.index].noalias() -= jac.transpose() * (inv * joint_rhs_[node.index]);
+      body_block_[parent.index].noalias() -=
+          jac.transpose() * (joint_inverse_[node.index] * jac);
     } else {
       // Reduced body blocks are M plus positive semidefinite terms: Cholesky.
       Eigen::LLT<Mat6>& factor = body_factor_[node.index];
       factor.compute(body_block_[node.index]);
+      if (node.parent < 0) continue;
+      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
       const Jac& jac = joints[parent.index].jacobian[node.side];  // E = J, 3x6
-      const Eigen::Matrix<double, 6, 3> inv_jt = factor.solve(jac.transpose());
-      joint_inverse_[parent.index].noalias() -= jac * inv_jt;
-      joint_rhs_[parent.index].noalias() -= inv_jt.transpose() * body_rhs_[node.index];
+      body_transfer_[node.index] = factor.solve(jac.transpose());
+      joint_inverse_[parent.index].noalias() -= jac * body_transfer_[node.index];
+    }
+  }
+}
+
+void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
+                       std::vector<Eigen::Vector3d>& dp) {
+  for (Vec6& b : body_rhs_) b.setZero();
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    joint_rhs_[j] = -joints[j].residual;
+    for (int r = joints[j].rows; r < 3; ++r) joint_rhs_[j][r] = 0.0;
+  }
+  const std::size_t n = order_.size();
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const TreeNode& node = order_[k];
+    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+    if (node.joint) {
+      const Jac& jac = joints[node.index].jacobian[node.side];
+      body_rhs_[parent.index].noalias() -=
+          jac.transpose() * (joint_inverse_[node.index] * joint_rhs_[node.index]);
+    } else {
+      joint_rhs_[parent.index].noalias() -=
+          body_transfer_[node.index].transpose() * body_rhs_[node.index];
     }
   }
   dv.resize(body_block_.size());
@@ -128,9 +144,9 @@ void TreeSystem::solve(const std::vector<Mat6>& mass, const std::vector<TreeJoin
   // The root, then every node from its parent's solution (root first).
   const TreeNode& root = order_[n - 1];
   if (root.joint) {
-    dp[root.index] = joint_inverse_[root.index].inverse() * joint_rhs_[root.index];
+    dp[root.index] = joint_inverse_[root.index] * joint_rhs_[root.index];
   } else {
-    dv[root.index] = body_block_[root.index].llt().solve(body_rhs_[root.index]);
+    dv[root.index] = body_factor_[root.index].solve(body_rhs_[root.index]);
   }
   for (std::size_t k = n - 1; k-- > 0;) {
     const TreeNode& node = order_[k];

@@ -54,10 +54,18 @@ class TreeSystem {
   // here.
   bool build(std::uint32_t bodies, const std::vector<TreeJoint>& joints);
 
-  // Solves for the velocity change of every body (6 each: v then w) and the impulse change
-  // of every joint (3 each; padding rows 0). mass: M per body (its inverse's inverse).
+  // Factors H for these masses (M per body) and Jacobians and Gammas, leaves first.
+  void factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints);
+  // With the last factor: the velocity change of every body (6 each: v then w) and the
+  // impulse change of every joint (3 each; padding rows 0) for the joints' residuals r.
+  void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
+             std::vector<Eigen::Vector3d>& dp);
+  // factor, then solve.
   void solve(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints,
-             std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp);
+             std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp) {
+    factor(mass, joints);
+    solve(joints, dv, dp);
+  }
 
   std::size_t nodes() const { return order_.size(); }
 
@@ -67,6 +75,7 @@ class TreeSystem {
   // reduced block's inverse; the right sides.
   std::vector<Mat6> body_block_;
   std::vector<Eigen::LLT<Mat6>> body_factor_;
+  std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // D_b^-1 J^T towards the parent
   std::vector<Vec6> body_rhs_;
   std::vector<Eigen::Matrix3d> joint_inverse_;
   std::vector<Eigen::Vector3d> joint_rhs_;
