@@ -61,9 +61,8 @@ class ByteReader {
 
 class Replayer {
  public:
-  Replayer(const std::string& bytes, const std::string& name,
-           const std::function<void(World&, long, double)>& after_step)
-      : in_(bytes, name), name_(name), after_step_(after_step) {}
+  Replayer(const std::string& bytes, const std::string& name, const ReplayHooks& hooks)
+      : in_(bytes, name), name_(name), hooks_(hooks) {}
 
   ReplayReport run() {
     header();
@@ -75,6 +74,10 @@ class Replayer {
       record_at_ = in_.offset();
       const auto tag = static_cast<Tag>(in_.get<std::uint8_t>("a record's tag"));
       if (tag == Tag::End) break;
+      if (version_ < 2 && tag != Tag::End &&
+          static_cast<std::uint8_t>(tag) >= recording::kFirstVersion2Tag)
+        fail("record tag " + std::to_string(static_cast<int>(tag)) +
+             " does not exist in a recording of version 1");
       try {
         record(tag);
       } catch (const SceneFileError& e) {
@@ -103,9 +106,12 @@ class Replayer {
     if (magic != std::string(recording::kMagic, sizeof recording::kMagic))
       throw RecordingError(name_ + ": not a softstep recording (no SSTEPREC signature)");
     const auto version = in_.get<std::uint32_t>("the version");
-    if (version != recording::kVersion)
+    if (version < recording::kOldestVersion || version > recording::kVersion)
       throw RecordingError(name_ + ": a recording of version " + std::to_string(version) +
-                           "; this softstep reads version " + std::to_string(recording::kVersion));
+                           "; this softstep reads versions " +
+                           std::to_string(recording::kOldestVersion) + " to " +
+                           std::to_string(recording::kVersion));
+    version_ = version;
     const auto scene_size = in_.get<std::uint64_t>("the initial scene's length");
     const std::string scene = in_.text(scene_size, "the initial scene");
     try {
@@ -123,6 +129,7 @@ class Replayer {
           "warm-start impulses, sleep state or ids a scene does not hold; start recording before "
           "the first step");
     for (BodyId id : world_.body_ids()) remember(id);
+    if (hooks_.on_start) hooks_.on_start(world_);
   }
 
   void remember(BodyId id) {
@@ -179,7 +186,7 @@ class Replayer {
                                " diverged: motion hash " + hex(now) + ", the recording has " +
                                hex(recorded) + " (record at byte " + std::to_string(record_at_) +
                                ")");
-        if (after_step_) after_step_(world_, report_.steps, dt);
+        if (hooks_.after_step) hooks_.after_step(world_, report_.steps, dt);
         return;
       }
       case Tag::CreateBody: {
@@ -280,7 +287,8 @@ class Replayer {
 
   ByteReader in_;
   const std::string& name_;
-  const std::function<void(World&, long, double)>& after_step_;
+  const ReplayHooks& hooks_;
+  std::uint32_t version_ = 0;
   World world_;
   std::vector<BodyId> by_slot_;
   ReplayReport report_;
@@ -290,17 +298,26 @@ class Replayer {
 }  // namespace
 
 ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,
-                                    const std::function<void(World&, long, double)>& after_step) {
-  return Replayer(bytes, name, after_step).run();
+                                    const ReplayHooks& hooks) {
+  return Replayer(bytes, name, hooks).run();
 }
 
-ReplayReport replay_recording(const std::string& path,
-                              const std::function<void(World&, long, double)>& after_step) {
+ReplayReport replay_recording(const std::string& path, const ReplayHooks& hooks) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw RecordingError(path + ": cannot open the file");
   std::stringstream bytes;
   bytes << in.rdbuf();
-  return replay_recording_bytes(bytes.str(), path, after_step);
+  return replay_recording_bytes(bytes.str(), path, hooks);
+}
+
+ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,
+                                    const std::function<void(World&, long, double)>& after_step) {
+  return replay_recording_bytes(bytes, name, ReplayHooks{{}, after_step});
+}
+
+ReplayReport replay_recording(const std::string& path,
+                              const std::function<void(World&, long, double)>& after_step) {
+  return replay_recording(path, ReplayHooks{{}, after_step});
 }
 
 }  // namespace softstep
