@@ -56,4 +56,15 @@ SimdWidth parse_simd(const std::string& name) {
   return SimdWidth::Best;
 }
 
+const std::vector<std::string>& solver_names() {
+  static const std::vector<std::string> names{"iterative", "direct-for-trees", "auto"};
+  return names;
+}
+
+SolverMode parse_solver(const std::string& name) {
+  if (name == "direct-for-trees") return SolverMode::DirectForTrees;
+  if (name == "auto") return SolverMode::Auto;
+  return SolverMode::Iterative;
+}
+
 }  // namespace softstep::tool

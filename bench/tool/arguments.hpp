@@ -33,5 +33,8 @@ CLI::Validator whole_in(long min, long max);
 const std::vector<std::string>& simd_names();
 // "best", "scalar", "sse", "avx2" or "avx512" (the option's check has accepted it).
 SimdWidth parse_simd(const std::string& name);
+// WorldSettings::solver: "iterative", "direct-for-trees", "auto".
+const std::vector<std::string>& solver_names();
+SolverMode parse_solver(const std::string& name);
 
 }  // namespace softstep::tool

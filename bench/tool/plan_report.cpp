@@ -45,6 +45,10 @@ void print_plan(const StepPlan& plan) {
   std::printf("  stages         %s\n", stages.empty() ? "none" : stages.c_str());
   std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
               plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
+  std::printf("  solver         %s: %zu tree island(s) exact (%zu joints), iterative: %zu with a "
+              "loop, %zu with other joints\n",
+              solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints,
+              plan.loop_islands, plan.other_islands);
   std::printf("  kernel variants (type, features: batches, joints)\n");
   for (const PlanKernel& k : plan.kernels) {
     std::printf("    %-9s %-40s %8u batches %9u joints\n", joint_type_name(k.type),
@@ -55,6 +59,11 @@ void print_plan(const StepPlan& plan) {
 nlohmann::json plan_json(const StepPlan& plan) {
   nlohmann::json j;
   j["specialized"] = plan.specialized ? 1 : 0;
+  j["solver"] = {{"mode", solver_mode_name(plan.solver)},
+                 {"tree_islands", plan.tree_islands},
+                 {"tree_joints", plan.tree_joints},
+                 {"loop_islands", plan.loop_islands},
+                 {"other_islands", plan.other_islands}};
   j["stages"] = nlohmann::json::array();
   for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
   j["effects"] = {{"gravity", plan.gravity},

@@ -49,6 +49,11 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--simd", o.simd, "SIMD width")
       ->check(CLI::IsMember(simd_names()))
       ->capture_default_str();
+  cmd->add_option("--solver", o.solver,
+                  "iterative, or exact for islands whose joints form a tree (direct-for-trees, "
+                  "auto)")
+      ->check(CLI::IsMember(solver_names()))
+      ->capture_default_str();
   cmd->add_flag("--no-warm-start", o.no_warm_start, "start every sub-step's impulses at zero");
   cmd->add_flag("--no-sleep", o.no_sleep, "islands at rest stay awake");
   cmd->add_flag("--general", o.general,
@@ -87,6 +92,7 @@ int profile_command(ProfileOptions o) {
   if (given("--threads")) settings.threads = o.settings.threads;
   if (o.threads_fixed) settings.fixed_threads = true;
   if (given("--simd")) settings.simd = parse_simd(o.simd);
+  if (given("--solver")) settings.solver = parse_solver(o.solver);
   if (o.no_warm_start) settings.warm_start = false;
   if (o.no_sleep) settings.sleeping = false;
   if (o.general) settings.specialize = false;

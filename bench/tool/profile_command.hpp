@@ -11,6 +11,7 @@ struct ProfileOptions {
   long steps = 300;
   WorldSettings settings;
   std::string simd = "best";
+  std::string solver = "iterative";
   bool threads_fixed = false;
   bool no_warm_start = false, no_sleep = false, general = false, show_plan = false;
   std::string json_path, csv_path, trace_path, save_path, record_path;

@@ -51,6 +51,7 @@ struct Setting {
   SimdWidth simd;
   int threads;
   int rigid_hertz;
+  SolverMode solver = SolverMode::Iterative;
 };
 
 std::string label(const Setting& s) {
@@ -58,6 +59,7 @@ std::string label(const Setting& s) {
                   std::to_string(s.iterations) + " it";
   if (!s.warm_start) l += ", cold";
   if (s.rigid_hertz != 60) l += ", " + std::to_string(s.rigid_hertz) + " Hz";
+  if (s.solver != SolverMode::Iterative) l += std::string(", ") + solver_mode_name(s.solver);
   return l;
 }
 
@@ -97,6 +99,7 @@ WorldSettings settings_of(const Setting& s, WorldSettings w) {
   w.simd = s.simd;
   w.threads = s.threads;
   w.rigid_hertz = s.rigid_hertz;
+  w.solver = s.solver;
   return w;
 }
 
@@ -145,6 +148,12 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
       ->capture_default_str();
   list("--threads", o.threads, 0, 256, "threads (0: all cores)");
   list("--rigid-hertz", o.rigid_hertz, 1, 1000000, "the stiffness rigid rows are solved with, Hz");
+  cmd->add_option("--solver", o.solver,
+                  "WorldSettings::solver: iterative, direct-for-trees, auto (a list)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(solver_names()))
+      ->type_name("LIST")
+      ->capture_default_str();
   cmd->add_option("--runs", o.runs, "timed runs per setting")
       ->check(whole_in(1, 1000))
       ->capture_default_str();
@@ -218,8 +227,11 @@ int sweep_command(const SweepOptions& o) {
                     std::find_if(rigid_hertz.begin(), rigid_hertz.end(),
                                  [&](long other) { return solved_at(other) == solved_at(k); });
                 if (*first_alike != k) continue;
-                grid.push_back({static_cast<int>(s), static_cast<int>(r), static_cast<int>(i), w, v,
-                                static_cast<int>(t), static_cast<int>(k)});
+                for (const std::string& mode : o.solver) {
+                  grid.push_back({static_cast<int>(s), static_cast<int>(r), static_cast<int>(i),
+                                  w, v, static_cast<int>(t), static_cast<int>(k),
+                                  parse_solver(mode)});
+                }
               }
 
   // Steps at which positions are compared with the reference and energy is measured, and
@@ -350,7 +362,7 @@ int sweep_command(const SweepOptions& o) {
   std::string csv =
       "substeps,relax,iterations,warm_start,simd,threads,rigid_hertz,ms_per_step,max_joint_error_m,"
       "rms_joint_error_m,velocity_residual,energy_drift,reference_distance,drift_m,stretch,"
-      "pareto\n";
+      "pareto,solver\n";
   for (std::size_t g = 0; g < grid.size(); ++g) {
     const Setting& s = grid[g];
     const Measured& m = results[g];
@@ -361,7 +373,8 @@ int sweep_command(const SweepOptions& o) {
            format_number(m.max_joint_error) + "," + format_number(m.rms_joint_error) + "," +
            format_number(m.velocity_residual) + "," + format_number(m.energy_drift) + "," +
            format_number(m.reference_distance) + "," + format_number(m.drift) + "," +
-           format_number(m.stretch) + "," + (front[g] ? "1" : "0") + "\n";
+           format_number(m.stretch) + "," + (front[g] ? "1" : "0") + "," +
+           solver_mode_name(s.solver) + "\n";
   }
   write_file(out + "/results.csv", csv);
   const std::string title = description + ": " + std::to_string(steps) + " steps of 1/60 s";

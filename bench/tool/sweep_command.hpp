@@ -18,6 +18,7 @@ struct SweepOptions {
   std::vector<std::string> simd{"best"};
   std::vector<long> threads{1};
   std::vector<long> rigid_hertz{60};
+  std::vector<std::string> solver{"iterative"};
   long runs = 3;
   std::string error = "drift";
   int reference_substeps = 64;

@@ -27,6 +27,8 @@ std::uint64_t World::state_hash() const {
   h.value(s.sleep_linear_speed);
   h.value(s.sleep_angular_speed);
   h.value(s.time_to_sleep);
+  // Only when not the default, so that the golden hashes of iterative worlds still hold.
+  if (s.solver != SolverMode::Iterative) h.value(s.solver);
   // Not hashed: simd, threads and specialize, which by design never change a result, so that runs
   // at different widths and thread counts can be compared by hash.
   h.value(w.bodies.size());

@@ -336,6 +336,12 @@ void World::step(double dt) {
           for (int i = 0; i < s.solve_iterations; ++i) solver.solve(arrays, ctx, share);
         });
       }
+      if (planned(PlanStage::TreeSolve)) {
+        stage(Stage::Solve, [&] {
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, true, share);
+          solver::team_barrier(share);
+        });
+      }
       // The solve ended at a barrier, and until the next barrier no thread writes velocities
       // or impulses (positions move): thread 0 may read them.
       if (capturing && sub == 0 && share.thread == 0) w.capture_solved();
@@ -348,6 +354,12 @@ void World::step(double dt) {
       if (planned(PlanStage::Relax)) {
         stage(Stage::Relax, [&] {
           for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
+        });
+      }
+      if (planned(PlanStage::TreeRelax)) {
+        stage(Stage::Relax, [&] {
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, false, share);
+          solver::team_barrier(share);
         });
       }
     }

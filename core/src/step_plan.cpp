@@ -64,6 +64,13 @@ void World::Impl::build_plan() {
   const bool solve = joints_awake && (all || lane_solver->needs(LaneSolver::Pass::Solve));
   const bool relax = joints_awake && settings.relax_iterations > 0 &&
                      (all || lane_solver->needs(LaneSolver::Pass::Relax));
+  trees.build(settings.solver, joints, bodies, *lane_solver);
+  p.solver = settings.solver;
+  p.tree_islands = trees.counts().tree_islands;
+  p.tree_joints = trees.counts().tree_joints;
+  p.loop_islands = trees.counts().loop_islands;
+  p.other_islands = trees.counts().other_islands;
+  const bool exact = joints_awake && !trees.empty();
   const auto add = [&](bool on, PlanStage stage) {
     if (on) p.stages.push_back(stage);
   };
@@ -76,8 +83,10 @@ void World::Impl::build_plan() {
   add(solve && settings.warm_start, PlanStage::WarmStart);
   add(joints_awake && !settings.warm_start, PlanStage::ClearImpulses);
   add(solve, PlanStage::Solve);
+  add(exact, PlanStage::TreeSolve);
   add(bodies_awake, PlanStage::IntegratePositions);
   add(relax, PlanStage::Relax);
+  add(exact && settings.relax_iterations > 0, PlanStage::TreeRelax);
   add(bodies_awake, PlanStage::Store);
   plan = std::move(p);
   plan_built = true;
@@ -108,12 +117,28 @@ const char* plan_stage_name(PlanStage stage) {
       return "clear_impulses";
     case PlanStage::Solve:
       return "solve";
+    case PlanStage::TreeSolve:
+      return "tree_solve";
+    case PlanStage::TreeRelax:
+      return "tree_relax";
     case PlanStage::IntegratePositions:
       return "integrate_positions";
     case PlanStage::Relax:
       return "relax";
     case PlanStage::Store:
       return "store";
+  }
+  return "?";
+}
+
+const char* solver_mode_name(SolverMode mode) {
+  switch (mode) {
+    case SolverMode::Iterative:
+      return "iterative";
+    case SolverMode::DirectForTrees:
+      return "direct-for-trees";
+    case SolverMode::Auto:
+      return "auto";
   }
   return "?";
 }

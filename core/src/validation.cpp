@@ -188,6 +188,11 @@ void settings(std::string_view call, const WorldSettings& s) {
            "must be in [0, 256] (0 = all of the machine's cores)");
   }
   positive(call, "WorldSettings.rigid_hertz", s.rigid_hertz);
+  if (s.solver != SolverMode::Iterative && s.solver != SolverMode::DirectForTrees &&
+      s.solver != SolverMode::Auto) {
+    reject(call, "WorldSettings.solver", std::to_string(static_cast<int>(s.solver)),
+           "must be SolverMode::Iterative, DirectForTrees or Auto");
+  }
   if (!(s.max_linear_speed >= kMinPositive && s.max_linear_speed <= kMaxSpeedLimit)) {
     reject(call, "WorldSettings.max_linear_speed", format(s.max_linear_speed),
            "must be in [" + format(kMinPositive) + ", " + format(kMaxSpeedLimit) + "] m/s");

@@ -14,6 +14,7 @@
 #include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"
 #include "solver/joint_batches.hpp"
+#include "solver/tree_solver.hpp"
 #include "thread_policy.hpp"
 
 namespace softstep {
@@ -116,6 +117,9 @@ class LaneSolver {
   virtual bool in_lanes(std::uint32_t joint_slot) const = 0;
   // The joint's accumulated impulses (its kind's kImpulses floats), when in_lanes.
   virtual std::array<float, kMaxJointImpulses> impulses(std::uint32_t joint_slot) const = 0;
+  // Adds to the joint's accumulated impulses (the exact tree pass, solver/tree_solver.hpp); only
+  // for kinds with an add_impulses (ball, distance), when in_lanes.
+  virtual void add_impulses(std::uint32_t joint_slot, const float* delta) = 0;
   // After set_joint: rewrites the joint's lane from its slot when it runs the same kernel and
   // signature as before, keeping its impulses; false when it needs a re-pack instead.
   virtual bool refresh(std::uint32_t joint_slot, const std::vector<JointSlot>& joints,
@@ -191,6 +195,7 @@ struct World::Impl {
   bool capturing = false;
   SolveCapture capture;  // of the last step, while capturing (solve_capture.cpp)
   StepPlan plan;
+  solver::TreeSolver trees;  // the islands WorldSettings::solver solves exactly (build_plan)
   bool plan_built = false;  // false after any change of content or settings
   std::unique_ptr<recording::Recorder> recorder;  // while recording (recording/recorder.cpp)
 

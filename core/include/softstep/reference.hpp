@@ -41,6 +41,7 @@ struct SoftSystem {
   VectorX velocity_before;                   // v0: after gravity and damping, before the solve
   VectorX velocity_after_solve;              // what the solver reached
   VectorX impulse_after_solve;               // the impulses it accumulated, N s
+  std::vector<int> joint_rows;               // rows of each joint, in row order
   int rows() const { return static_cast<int>(bias.size()); }
 };
 
@@ -55,6 +56,12 @@ struct ExactSolution {
   int bounded_rows = 0;  // rows whose bias bound the solver would have applied
 };
 ExactSolution solve_exact(const SoftSystem& system);
+
+// The same system solved by the step's linear-time tree elimination (WorldSettings::solver =
+// DirectForTrees, core/src/solver/tree_system.hpp): equal to solve_exact up to rounding when
+// the joints form a tree. Throws std::invalid_argument when they do not (a loop through
+// movable bodies, or more than one joint to static or kinematic bodies in one island).
+ExactSolution solve_tree(const SoftSystem& system);
 
 // J v + bias + Gamma P per row, m/s: zero for the exact solution.
 VectorX row_residual(const SoftSystem& system, const VectorX& velocity, const VectorX& impulse);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "softstep/joints.hpp"
+#include "softstep/world_settings.hpp"
 
 namespace softstep {
 
@@ -23,11 +24,13 @@ enum class PlanStage : std::uint8_t {
   WarmStart,           // per sub-step: last sub-step's impulses applied
   ClearImpulses,       // per sub-step: warm starting off
   Solve,               // per sub-step: soft, biased pass
+  TreeSolve,           // per sub-step: the exact biased pass of tree islands (WorldSettings::solver)
   IntegratePositions,  // per sub-step
   Relax,               // per sub-step: only with rigid rows or limit rows (springs are not relaxed)
+  TreeRelax,           // per sub-step: the exact unbiased pass of tree islands
   Store,               // poses and velocities back to the world (once per step)
 };
-inline constexpr int kPlanStageCount = 12;
+inline constexpr int kPlanStageCount = 14;
 const char* plan_stage_name(PlanStage stage);  // "prepare_bodies", "gravity", ...
 
 // What the spring row of a kernel variant is: Any is the general kernel (per-lane switches).
@@ -61,7 +64,13 @@ struct StepPlan {
   bool kinematic_bodies = false;      // an awake kinematic body
   bool unconstrained_bodies = false;  // an awake movable body with no joint
   bool specialized = true;            // false: WorldSettings::specialize is off (general kernels)
-  std::vector<PlanStage> stages;      // in run order; Gravity..Relax repeat every sub-step
+  std::vector<PlanStage> stages;      // in run order; Gravity..TreeRelax repeat every sub-step
+  // WorldSettings::solver and what it did with the awake islands (solver/tree_solver.hpp).
+  SolverMode solver = SolverMode::Iterative;
+  std::size_t tree_islands = 0;   // solved exactly: their joints form a tree
+  std::size_t tree_joints = 0;    // the joints of those islands
+  std::size_t loop_islands = 0;   // a loop through movable bodies: solved iteratively
+  std::size_t other_islands = 0;  // a joint kind or spring the exact pass lacks: iterative
   std::vector<PlanKernel> kernels;    // ordered by type, then variant
   std::size_t awake_bodies = 0;       // movable bodies integrated each sub-step
   std::size_t sleeping_islands = 0;

@@ -17,6 +17,24 @@ enum class SimdWidth {
 // "best", "scalar", "sse", "avx2" or "avx512".
 const char* simd_width_name(SimdWidth width);
 
+// How the joints of each island are solved (README, "Rigid means rigid").
+enum class SolverMode {
+  // Gauss-Seidel passes over soft rows (the design's default): a rigid row is a stiff spring
+  // of at most a quarter of the sub-step rate, so a chain under a heavy load stretches.
+  Iterative,
+  // Islands whose joints form a tree (chains, ropes, ragdolls, bridges: no loop through movable
+  // bodies) and are all rigid ball or rigid distance joints are solved exactly each sub-step,
+  // in time linear in their rows, with rigid rows that are rigid (no softness): the load no
+  // longer stretches them. Every other island is solved iteratively, as in Iterative.
+  DirectForTrees,
+  // As DirectForTrees, except islands of a single joint, which one Gauss-Seidel pass already
+  // solves exactly (a block solve of their one joint).
+  Auto,
+};
+
+// "iterative", "direct-for-trees" or "auto".
+const char* solver_mode_name(SolverMode mode);
+
 struct WorldSettings {
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  // m/s^2
   int substeps = 4;                          // >= 1: sub-steps per step(dt), each a full solve
@@ -66,6 +84,8 @@ struct WorldSettings {
   // v / r <= max_rotation_per_substep * substeps / dt: raise the sub-steps, or this to pi/2.
   double max_rotation_per_substep = 0.25 * std::numbers::pi;
   SimdWidth simd = SimdWidth::Best;
+  // Iterative, DirectForTrees or Auto (above). World::step_plan shows which islands ran which.
+  SolverMode solver = SolverMode::Iterative;
   // Sleeping. An island (bodies linked by joints; a static body links nothing) whose bodies
   // all stay below both speeds for time_to_sleep falls asleep: its bodies stop (velocity 0)
   // and cost nothing per step until something wakes it (README, "Sleeping").

@@ -48,6 +48,12 @@ struct BallKind {
   template <int W>
   static void write_step_start(Group<W>&, int, JointSlot&, const std::vector<BodySlot>&) {}
 
+  // The exact tree pass's impulse change (solver/tree_solver.hpp), world frame.
+  template <int W>
+  static void add_impulses(Group<W>& g, int lane, const float* delta) {
+    for (int k = 0; k < 3; ++k) g.impulse[k][lane] += delta[k];
+  }
+
   SOFTSTEP_JOINT_KIND_MEMBERS;
 };
 

@@ -55,6 +55,12 @@ struct DistanceKind {
   template <int W>
   static void write_step_start(Group<W>&, int, JointSlot&, const std::vector<BodySlot>&) {}
 
+  // The exact tree pass's impulse change along the axis (solver/tree_solver.hpp): the rod row.
+  template <int W>
+  static void add_impulses(Group<W>& g, int lane, const float* delta) {
+    g.impulse[lane] += delta[0];
+  }
+
   SOFTSTEP_JOINT_KIND_MEMBERS;
 };
 

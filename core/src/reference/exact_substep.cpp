@@ -49,6 +49,7 @@ SoftSystem first_substep_system(const World& world) {
     }
     if (rows.count == 0) continue;
     const int row = static_cast<int>(bias.size());
+    s.joint_rows.push_back(rows.count);
     add_block(jacobian, row, 6 * block(rows.body_a), rows.jacobian.block(0, 0, rows.count, 6));
     add_block(jacobian, row, 6 * block(rows.body_b), rows.jacobian.block(0, 6, rows.count, 6));
     // gamma and bias_rate with m_eff = 1: Gamma = (gamma / h) K (talk 2:3:2).

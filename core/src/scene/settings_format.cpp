@@ -60,6 +60,17 @@ WorldSettings read_settings(ObjectReader& fields) {
   if (!known)
     fail(fields.source(), fields.path_of("simd"),
          "expected \"best\", \"scalar\", \"sse\", \"avx2\" or \"avx512\"");
+  const std::string solver = fields.text("solver", solver_mode_name(s.solver));
+  known = false;
+  for (SolverMode m : {SolverMode::Iterative, SolverMode::DirectForTrees, SolverMode::Auto}) {
+    if (solver == solver_mode_name(m)) {
+      s.solver = m;
+      known = true;
+    }
+  }
+  if (!known)
+    fail(fields.source(), fields.path_of("solver"),
+         "expected \"iterative\", \"direct-for-trees\" or \"auto\"");
   fields.no_other_keys();
   return s;
 }
@@ -71,6 +82,7 @@ nlohmann::json settings_json(const WorldSettings& s) {
   for (const auto& f : kNumbers) j[f.key] = s.*f.member;
   for (const auto& f : kSwitches) j[f.key] = s.*f.member;
   j["simd"] = simd_width_name(s.simd);
+  j["solver"] = solver_mode_name(s.solver);
   return j;
 }
 

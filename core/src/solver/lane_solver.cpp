@@ -154,6 +154,17 @@ class LaneSolverImpl final : public LaneSolver {
     return true;
   }
 
+  void add_impulses(std::uint32_t joint_slot, const float* delta) override {
+    const LaneRef& r = lane_of_[joint_slot];
+    with_lane(r, [&]<class Kind>(auto& group) {
+      if constexpr (requires { Kind::add_impulses(group, 0, delta); }) {
+        Kind::add_impulses(group, static_cast<int>(r.lane), delta);
+      } else {
+        throw std::logic_error("add_impulses: this joint kind keeps no exact-pass impulses");
+      }
+    });
+  }
+
   void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
                                     std::vector<double>& extra) const override {
     visit_lanes(*this, solver::Share{},

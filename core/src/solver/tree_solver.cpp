@@ -1,0 +1,257 @@
+#include "solver/tree_solver.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <algorithm>
+#include <numeric>
+
+#include "world_impl.hpp"
+
+namespace softstep::solver {
+
+namespace {
+
+// The joints the exact pass models: a rigid ball joint (3 rows) or a rigid distance joint
+// (1 row; its limits are off when rigid, distance_joint.cpp).
+bool exact_kind(const JointSlot& j) {
+  if (j.type == JointType::Ball) return std::get<BallJointDef>(j.def).spring.is_rigid();
+  if (j.type == JointType::Distance) return std::get<DistanceJointDef>(j.def).spring.is_rigid();
+  return false;
+}
+
+bool moves(const BodySlot& b) {
+  return b.type == BodyType::Dynamic;
+}
+
+std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+  while (parent[x] != x) x = parent[x] = parent[parent[x]];
+  return x;
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& r) {
+  Eigen::Matrix3d s;
+  s << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
+  return s;
+}
+
+Vec6 velocity_of(const simd::VelocityRecord& v) {
+  Vec6 x;
+  x << v.v[0], v.v[1], v.v[2], v.w[0], v.w[1], v.w[2];
+  return x;
+}
+
+// A body's pose now as the kernels see it: the step-start pose moved by the solver's delta.
+struct PoseNow {
+  Eigen::Vector3d dp;
+  Eigen::Quaterniond dq;
+};
+
+PoseNow pose_now(const simd::DeltaRecord& d) {
+  return {Eigen::Vector3d(d.dp[0], d.dp[1], d.dp[2]),
+          Eigen::Quaterniond(d.dq[3], d.dq[0], d.dq[1], d.dq[2])};
+}
+
+}  // namespace
+
+void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
+                       const std::vector<BodySlot>& bodies, const LaneSolver& lanes) {
+  islands_.clear();
+  counts_ = {};
+  if (mode == SolverMode::Iterative) return;
+  // Islands of movable bodies over the awake joints, with a loop flag and an "only kinds the
+  // exact pass models" flag per root.
+  std::vector<std::uint32_t> parent(bodies.size());
+  std::iota(parent.begin(), parent.end(), 0u);
+  std::vector<bool> loop(bodies.size(), false), other(bodies.size(), false);
+  std::vector<std::uint32_t> awake;
+  for (std::uint32_t j = 0; j < joints.size(); ++j) {
+    const JointSlot& slot = joints[j];
+    if (!slot.alive || !lanes.in_lanes(j)) continue;
+    const bool a = moves(bodies[slot.body_a]), b = moves(bodies[slot.body_b]);
+    if (!a && !b) continue;  // nothing to solve: no island
+    awake.push_back(j);
+    const std::uint32_t ra = find(parent, a ? slot.body_a : slot.body_b);
+    const std::uint32_t rb = find(parent, b ? slot.body_b : slot.body_a);
+    bool joined_loop = loop[ra] || loop[rb];
+    bool joined_other = other[ra] || other[rb] || !exact_kind(slot);
+    if (a && b && ra == rb) joined_loop = true;  // a second path between two bodies
+    const std::uint32_t root = std::min(ra, rb);
+    parent[std::max(ra, rb)] = root;
+    loop[root] = joined_loop;
+    other[root] = joined_other;
+  }
+  // Islands in order of their smallest body slot; members in slot order.
+  std::vector<std::int32_t> island_of(bodies.size(), -1);
+  std::vector<std::uint32_t> roots;
+  for (std::uint32_t j : awake) {
+    const JointSlot& slot = joints[j];
+    const std::uint32_t body = moves(bodies[slot.body_a]) ? slot.body_a : slot.body_b;
+    const std::uint32_t r = find(parent, body);
+    if (island_of[r] == -1) {
+      island_of[r] = static_cast<std::int32_t>(roots.size());
+      roots.push_back(r);
+    }
+  }
+  std::vector<Island> candidates(roots.size());
+  std::vector<std::int32_t> local(bodies.size(), -1);
+  for (std::uint32_t s = 0; s < bodies.size(); ++s) {
+    if (!moves(bodies[s]) || bodies[s].asleep || !bodies[s].alive) continue;
+    const std::uint32_t r = find(parent, s);
+    if (island_of[r] < 0) continue;
+    Island& island = candidates[static_cast<std::size_t>(island_of[r])];
+    local[s] = static_cast<std::int32_t>(island.bodies.size());
+    island.bodies.push_back(s);
+  }
+  for (std::uint32_t j : awake) {
+    const JointSlot& slot = joints[j];
+    const std::uint32_t body = moves(bodies[slot.body_a]) ? slot.body_a : slot.body_b;
+    Island& island = candidates[static_cast<std::size_t>(island_of[find(parent, body)])];
+    island.joints.push_back(j);
+    TreeJoint t;
+    t.body[0] = moves(bodies[slot.body_a]) ? local[slot.body_a] : -1;
+    t.body[1] = moves(bodies[slot.body_b]) ? local[slot.body_b] : -1;
+    t.rows = slot.type == JointType::Ball ? 3 : 1;
+    island.rows.push_back(t);
+  }
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    Island& island = candidates[i];
+    if (loop[roots[i]]) {
+      ++counts_.loop_islands;
+      continue;
+    }
+    if (other[roots[i]]) {
+      ++counts_.other_islands;
+      continue;
+    }
+    // One joint: a Gauss-Seidel pass is already its exact block solve.
+    if (mode == SolverMode::Auto && island.joints.size() < 2) continue;
+    if (!island.system.build(static_cast<std::uint32_t>(island.bodies.size()), island.rows)) {
+      ++counts_.loop_islands;  // a loop through the ground: two joints to static or kinematic
+      continue;
+    }
+    island.mass.resize(island.bodies.size());
+    ++counts_.tree_islands;
+    counts_.tree_joints += island.joints.size();
+    islands_.push_back(std::move(island));
+  }
+}
+
+void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+                      SolverBodies& solver_bodies, LaneSolver& lanes,
+                      const simd::SubstepContext& ctx, bool with_bias, const Share& share) {
+  // Islands are disjoint in bodies and joints: each thread solves its slice alone. One long
+  // chain is one island and runs on one thread.
+  const Slice mine = slice_of(islands_.size(), share);
+  for (std::size_t i = mine.begin; i < mine.end; ++i) {
+    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, with_bias);
+  }
+}
+
+// After the relax: J dx = -C with the relax pass's factor (the same positions and Jacobians),
+// each row's C bounded by max_correction_speed * h as the biased pass bounds its speed; dx
+// moves the bodies' deltas (linear, then a first-order turn), not their velocities.
+void TreeSolver::project_positions(Island& island, SolverBodies& sb,
+                                   const simd::SubstepContext& ctx) {
+  const double step = double(ctx.max_correction_speed) * double(ctx.h);
+  for (std::size_t k = 0; k < island.joints.size(); ++k) {
+    island.rows[k].residual = island.error[k].cwiseMax(-step).cwiseMin(step);
+  }
+  // dp holds the position multipliers here; the impulses were already added.
+  std::vector<Eigen::Vector3d>& multipliers = island.dp;
+  island.system.solve(island.rows, island.dv, multipliers);
+  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+    simd::DeltaRecord& d = sb.delta[island.bodies[b] + 1];
+    const Vec6& dx = island.dv[b];
+    for (int k = 0; k < 3; ++k) d.dp[k] = static_cast<float>(double(d.dp[k]) + dx[k]);
+    const Eigen::Quaterniond q(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
+    const Eigen::Quaterniond turn(0.0, 0.5 * dx[3], 0.5 * dx[4], 0.5 * dx[5]);
+    Eigen::Quaterniond moved = q;
+    moved.coeffs() += (turn * q).coeffs();
+    moved.normalize();
+    d.dq[0] = static_cast<float>(moved.x());
+    d.dq[1] = static_cast<float>(moved.y());
+    d.dq[2] = static_cast<float>(moved.z());
+    d.dq[3] = static_cast<float>(moved.w());
+  }
+}
+
+void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& joints,
+                              const std::vector<BodySlot>& bodies, SolverBodies& sb,
+                              LaneSolver& lanes, const simd::SubstepContext& ctx,
+                              bool with_bias) {
+  // M per body from the solver's mass record (the geometric-stiffness inertia included), so
+  // the exact pass and the Gauss-Seidel passes solve with the same masses.
+  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+    const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
+    Eigen::Matrix3d inv_i;
+    inv_i << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
+        m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
+    Mat6& mass = island.mass[b];
+    mass.setZero();
+    mass.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / double(m.inv_mass);
+    mass.bottomRightCorner<3, 3>() = inv_i.inverse();
+  }
+  const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
+  const double bound = double(ctx.max_correction_speed);
+  island.error.resize(island.joints.size());
+  for (std::size_t k = 0; k < island.joints.size(); ++k) {
+    const JointSlot& j = joints[island.joints[k]];
+    const BodySlot& a = bodies[j.body_a];
+    const BodySlot& b = bodies[j.body_b];
+    const std::int32_t ia = solver_index(a, j.body_a), ib = solver_index(b, j.body_b);
+    const PoseNow pa = pose_now(sb.delta[static_cast<std::size_t>(ia)]);
+    const PoseNow pb = pose_now(sb.delta[static_cast<std::size_t>(ib)]);
+    // As the kernels: step-start anchors in double, turned by the rotation since.
+    const Eigen::Vector3d r_a = pa.dq * (a.orientation * j.local_anchor_a);
+    const Eigen::Vector3d r_b = pb.dq * (b.orientation * j.local_anchor_b);
+    const Eigen::Vector3d separation = (b.position - a.position) + (pb.dp - pa.dp) + (r_b - r_a);
+    const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
+    const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
+    TreeJoint& t = island.rows[k];
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    if (j.type == JointType::Ball) {
+      t.jacobian[0] << -Eigen::Matrix3d::Identity(), skew(r_a);
+      t.jacobian[1] << Eigen::Matrix3d::Identity(), -skew(r_b);
+      c = separation;
+    } else {
+      const double length = separation.norm();
+      t.jacobian[0].setZero();
+      t.jacobian[1].setZero();
+      t.gamma.setZero();
+      if (length > 1e-9) {
+        const Eigen::Vector3d n = separation / length;
+        t.jacobian[0].block<1, 3>(0, 0) = -n.transpose();
+        t.jacobian[0].block<1, 3>(0, 3) = -r_a.cross(n).transpose();
+        t.jacobian[1].block<1, 3>(0, 0) = n.transpose();
+        t.jacobian[1].block<1, 3>(0, 3) = r_b.cross(n).transpose();
+        c[0] = length - std::get<DistanceJointDef>(j.def).rest_length;
+      } else {
+        // No axis: no row (as the kernel's normalize_or_zero). A unit softness keeps the
+        // joint's block invertible; its impulse comes out 0.
+        t.gamma(0, 0) = 1.0;
+      }
+    }
+    for (int r = t.rows; r < 3; ++r) c[r] = 0.0;  // padding rows (distance joints)
+    island.error[k] = c;
+    const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
+    t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
+  }
+  island.system.solve(island.mass, island.rows, island.dv, island.dp);
+  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+    simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
+    const Vec6 now = velocity_of(v) + island.dv[b];
+    for (int k = 0; k < 3; ++k) {
+      v.v[k] = static_cast<float>(now[k]);
+      v.w[k] = static_cast<float>(now[3 + k]);
+    }
+  }
+  for (std::size_t k = 0; k < island.joints.size(); ++k) {
+    const float delta[3] = {static_cast<float>(island.dp[k][0]),
+                            static_cast<float>(island.dp[k][1]),
+                            static_cast<float>(island.dp[k][2])};
+    lanes.add_impulses(island.joints[k], delta);
+  }
+  if (!with_bias) project_positions(island, sb, ctx);
+}
+
+}  // namespace softstep::solver

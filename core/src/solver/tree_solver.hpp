@@ -1,0 +1,79 @@
+// WorldSettings::solver = DirectForTrees / Auto: which islands are solved exactly
+// (tree_system.hpp) and the passes that do it, after the Gauss-Seidel solve and relax of each
+// sub-step. The Gauss-Seidel passes still run over these joints first (they warm-start the
+// lanes and cost little beside the exact pass); the exact pass then moves each island's
+// velocities and impulses from wherever the passes left them to the exact solution of the
+// sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C bounded per row by
+// max_correction_speed while solving, no bias while relaxing. The relax pass then also
+// projects the positions: with the same factor it solves J dx = -C and moves the bodies by dx
+// (no velocity change), bounded per row by max_correction_speed * h. Without it the exact
+// velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per
+// sub-step as it cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a
+// joint 0.19 m.
+//
+// Handles rigid ball joints and rigid distance joints. An island (movable bodies linked by
+// joints) with any other joint (soft, free, limited, revolute, prismatic, weld, ...), with
+// a loop through its movable bodies, or with more than one joint to a static or kinematic
+// body (a loop through the ground, tree_system.cpp) stays iterative; StepPlan counts them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "softstep/simd/step_context.hpp"
+#include "softstep/world_settings.hpp"
+#include "solver/joint_batches.hpp"
+#include "solver/tree_system.hpp"
+
+namespace softstep {
+struct JointSlot;
+struct BodySlot;
+struct SolverBodies;
+class LaneSolver;
+}  // namespace softstep
+
+namespace softstep::solver {
+
+struct TreeCounts {
+  std::size_t tree_islands = 0;   // solved exactly
+  std::size_t tree_joints = 0;
+  // A loop through movable bodies, or through the ground (more than one joint to a static or
+  // kinematic body): iterative.
+  std::size_t loop_islands = 0;
+  std::size_t other_islands = 0;  // a joint the exact pass does not handle: iterative
+};
+
+class TreeSolver {
+ public:
+  // Finds the islands to solve exactly among the joints in the lanes (awake).
+  void build(SolverMode mode, const std::vector<JointSlot>& joints,
+             const std::vector<BodySlot>& bodies, const LaneSolver& lanes);
+  bool empty() const { return islands_.empty(); }
+  const TreeCounts& counts() const { return counts_; }
+  // One exact pass over this thread's islands: with_bias while solving, without while
+  // relaxing. Writes the bodies' velocities and adds to the joints' lane impulses.
+  void pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+            SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
+            bool with_bias, const Share& share);
+
+ private:
+  struct Island {
+    std::vector<std::uint32_t> bodies;  // movable body slots (island-local order)
+    std::vector<std::uint32_t> joints;  // joint slots
+    std::vector<TreeJoint> rows;        // per joint, refilled each pass
+    std::vector<Mat6> mass;
+    std::vector<Vec6> dv;
+    std::vector<Eigen::Vector3d> dp;
+    std::vector<Eigen::Vector3d> error;  // C per joint (padding rows 0), refilled each pass
+    TreeSystem system;
+  };
+  void solve_island(Island& island, const std::vector<JointSlot>& joints,
+                    const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
+                    LaneSolver& lanes, const simd::SubstepContext& ctx, bool with_bias);
+  static void project_positions(Island& island, SolverBodies& sb,
+                                const simd::SubstepContext& ctx);
+  std::vector<Island> islands_;
+  TreeCounts counts_;
+};
+
+}  // namespace softstep::solver

@@ -1,0 +1,168 @@
+#include "solver/tree_system.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+namespace softstep::solver {
+
+bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joints) {
+  order_.clear();
+  if (bodies == 0) return false;
+  // Node ids: bodies 0 .. bodies-1, then joint j is bodies + j.
+  const std::uint32_t nodes = bodies + static_cast<std::uint32_t>(joints.size());
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> around(bodies);
+  std::size_t edges = 0;
+  for (std::uint32_t j = 0; j < joints.size(); ++j) {
+    for (std::uint8_t s = 0; s < 2; ++s) {
+      const std::int32_t b = joints[j].body[s];
+      if (b < 0) continue;
+      around[static_cast<std::size_t>(b)].push_back({bodies + j, s});
+      ++edges;
+    }
+  }
+  if (edges + 1 != nodes) return false;  // a connected graph is a tree iff edges = nodes - 1
+  // A joint on one movable body (its other end static or kinematic) is a leaf whose block,
+  // -Gamma, is 0 for a rigid row: it cannot be eliminated before its body. So such a joint
+  // must be the root, and an island can have one: two (a bridge pinned at both ends) close a
+  // loop through the ground, which this elimination cannot order (a 9x9 body + joint block
+  // would; not done), and the island stays iterative.
+  std::int32_t grounded = -1;
+  for (std::uint32_t j = 0; j < joints.size(); ++j) {
+    if (joints[j].body[0] >= 0 && joints[j].body[1] >= 0) continue;
+    if (grounded >= 0) return false;
+    grounded = static_cast<std::int32_t>(j);
+  }
+  // Breadth first from the root: a node's parent comes before it, so the reverse is an
+  // order that eliminates every node after its children. Without a grounded joint the root is
+  // body 0, and every joint has a child body.
+  std::vector<TreeNode> bfs;
+  bfs.reserve(nodes);
+  std::vector<bool> seen(nodes, false);
+  if (grounded >= 0) {
+    bfs.push_back({true, static_cast<std::uint32_t>(grounded), -1, 0});
+    seen[bodies + static_cast<std::uint32_t>(grounded)] = true;
+  } else {
+    bfs.push_back({false, 0, -1, 0});
+    seen[0] = true;
+  }
+  for (std::size_t k = 0; k < bfs.size(); ++k) {
+    const TreeNode n = bfs[k];
+    const auto here = static_cast<std::int32_t>(k);
+    if (n.joint) {
+      const TreeJoint& j = joints[n.index];
+      for (std::uint8_t s = 0; s < 2; ++s) {
+        const std::int32_t b = j.body[s];
+        if (b < 0 || seen[static_cast<std::size_t>(b)]) continue;
+        seen[static_cast<std::size_t>(b)] = true;
+        bfs.push_back({false, static_cast<std::uint32_t>(b), here, s});
+      }
+    } else {
+      for (const auto& [node, side] : around[n.index]) {
+        if (seen[node]) continue;
+        seen[node] = true;
+        bfs.push_back({true, node - bodies, here, side});
+      }
+    }
+  }
+  if (bfs.size() != nodes) return false;  // not connected
+  order_.resize(nodes);
+  const auto last = static_cast<std::int32_t>(nodes) - 1;
+  for (std::size_t k = 0; k < nodes; ++k) {
+    TreeNode n = bfs[k];
+    if (n.parent >= 0) n.parent = last - n.parent;
+    order_[static_cast<std::size_t>(last) - k] = n;
+  }
+  body_block_.resize(bodies);
+  body_factor_.resize(bodies);
+  body_transfer_.resize(bodies);
+  body_rhs_.resize(bodies);
+  joint_inverse_.resize(joints.size());
+  joint_rhs_.resize(joints.size());
+  return true;
+}
+
+void TreeSystem::factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints) {
+  // The blocks of H; each becomes its reduced block (a body's Cholesky factor, a joint's
+  // inverse) when its node is eliminated.
+  for (std::size_t b = 0; b < body_block_.size(); ++b) body_block_[b] = mass[b];
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    Eigen::Matrix3d d = -joints[j].gamma;
+    for (int r = joints[j].rows; r < 3; ++r) {
+      d.row(r).setZero();
+      d.col(r).setZero();
+      d(r, r) = -1.0;
+    }
+    joint_inverse_[j] = d;
+  }
+  const std::size_t n = order_.size();
+  // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree.
+  for (std::size_t k = 0; k < n; ++k) {
+    const TreeNode& node = order_[k];
+    if (node.joint) {
+      // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
+      joint_inverse_[node.index] = joint_inverse_[node.index].inverse().eval();
+      if (node.parent < 0) continue;
+      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+      const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
+      body_block_[parent.index].noalias() -=
+          jac.transpose() * (joint_inverse_[node.index] * jac);
+    } else {
+      // Reduced body blocks are M plus positive semidefinite terms: Cholesky.
+      Eigen::LLT<Mat6>& factor = body_factor_[node.index];
+      factor.compute(body_block_[node.index]);
+      if (node.parent < 0) continue;
+      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+      const Jac& jac = joints[parent.index].jacobian[node.side];  // E = J, 3x6
+      body_transfer_[node.index] = factor.solve(jac.transpose());
+      joint_inverse_[parent.index].noalias() -= jac * body_transfer_[node.index];
+    }
+  }
+}
+
+void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
+                       std::vector<Eigen::Vector3d>& dp) {
+  for (Vec6& b : body_rhs_) b.setZero();
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    joint_rhs_[j] = -joints[j].residual;
+    for (int r = joints[j].rows; r < 3; ++r) joint_rhs_[j][r] = 0.0;
+  }
+  const std::size_t n = order_.size();
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const TreeNode& node = order_[k];
+    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+    if (node.joint) {
+      const Jac& jac = joints[node.index].jacobian[node.side];
+      body_rhs_[parent.index].noalias() -=
+          jac.transpose() * (joint_inverse_[node.index] * joint_rhs_[node.index]);
+    } else {
+      joint_rhs_[parent.index].noalias() -=
+          body_transfer_[node.index].transpose() * body_rhs_[node.index];
+    }
+  }
+  dv.resize(body_block_.size());
+  dp.resize(joint_inverse_.size());
+  // The root, then every node from its parent's solution (root first).
+  const TreeNode& root = order_[n - 1];
+  if (root.joint) {
+    dp[root.index] = joint_inverse_[root.index] * joint_rhs_[root.index];
+  } else {
+    dv[root.index] = body_factor_[root.index].solve(body_rhs_[root.index]);
+  }
+  for (std::size_t k = n - 1; k-- > 0;) {
+    const TreeNode& node = order_[k];
+    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+    if (node.joint) {
+      const Jac& jac = joints[node.index].jacobian[node.side];
+      dp[node.index] =
+          joint_inverse_[node.index] * (joint_rhs_[node.index] - jac * dv[parent.index]);
+    } else {
+      const Jac& jac = joints[parent.index].jacobian[node.side];
+      dv[node.index] =
+          body_factor_[node.index].solve(body_rhs_[node.index] - jac.transpose() * dp[parent.index]);
+    }
+  }
+  // The unknown of a joint is lambda = -dP.
+  for (Eigen::Vector3d& p : dp) p = -p;
+}
+
+}  // namespace softstep::solver

@@ -1,0 +1,84 @@
+// The exact solve of one sub-step's soft system on an island whose joints form a tree
+// (Baraff, "Linear-time dynamics using Lagrange multipliers", SIGGRAPH 1996).
+//
+// The system (reference.hpp, DESIGN.md "The math in one place"), written with the body
+// velocities kept as unknowns:
+//     [ M   J^T ] [ dv ]   [ 0  ]         dP = -lambda
+//     [ J  -Gam ] [ lam] = [ -r ]         r  = J v + bias + Gamma P   (the row residual)
+// Its sparsity graph has a node per body and per joint and an edge where a joint touches a
+// movable body. When that graph is a tree (a chain, a rope, a ragdoll, a bridge pinned at both
+// ends: static and kinematic bodies are not nodes), eliminating the nodes leaves first creates
+// no fill: each node's block is reduced by its children's Schur complements and the system is
+// solved in time linear in its rows. Bodies are 6x6 blocks, joints 3x3 (a joint of fewer rows
+// pads its block with -1 on the diagonal and zero Jacobian rows, whose unknowns come out 0).
+//
+// Scalar, double precision, one island at a time in a fixed order: the same bits at every
+// SIMD width and thread count.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace softstep::solver {
+
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Jac = Eigen::Matrix<double, 3, 6>;  // a joint's rows against one body (v, then w)
+
+// One joint as the tree solve sees it. body[s] is the island-local index of side s's body,
+// or -1 when that body does not move (static, kinematic): its velocity is already in r.
+struct TreeJoint {
+  std::int32_t body[2] = {-1, -1};
+  int rows = 3;                                   // 1..3; rows beyond are padding
+  Jac jacobian[2] = {Jac::Zero(), Jac::Zero()};  // per side
+  Eigen::Matrix3d gamma = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d residual = Eigen::Vector3d::Zero();  // r = J v + bias + Gamma P
+};
+
+// The elimination order of an island, built once per topology: every node after its
+// children. A node is a body or a joint; `side` says which end of the joint the edge to the
+// parent is (for a joint whose parent is a body, and a body whose parent is a joint).
+struct TreeNode {
+  bool joint = false;
+  std::uint32_t index = 0;    // island-local body or joint index
+  std::int32_t parent = -1;   // position in the order; -1 for the root (last)
+  std::uint8_t side = 0;
+};
+
+class TreeSystem {
+ public:
+  // Orders the island's bodies and joints (each joint's body[] set). Returns false when the
+  // graph has a loop or is not connected: it is not one tree, and this island is not solved
+  // here.
+  bool build(std::uint32_t bodies, const std::vector<TreeJoint>& joints);
+
+  // Factors H for these masses (M per body) and Jacobians and Gammas, leaves first.
+  void factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints);
+  // With the last factor: the velocity change of every body (6 each: v then w) and the
+  // impulse change of every joint (3 each; padding rows 0) for the joints' residuals r.
+  void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
+             std::vector<Eigen::Vector3d>& dp);
+  // factor, then solve.
+  void solve(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints,
+             std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp) {
+    factor(mass, joints);
+    solve(joints, dv, dp);
+  }
+
+  std::size_t nodes() const { return order_.size(); }
+
+ private:
+  std::vector<TreeNode> order_;
+  // Scratch, sized once: per body the reduced block and its Cholesky factor, per joint the
+  // reduced block's inverse; the right sides.
+  std::vector<Mat6> body_block_;
+  std::vector<Eigen::LLT<Mat6>> body_factor_;
+  std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // D_b^-1 J^T towards the parent
+  std::vector<Vec6> body_rhs_;
+  std::vector<Eigen::Matrix3d> joint_inverse_;
+  std::vector<Eigen::Vector3d> joint_rhs_;
+};
+
+}  // namespace softstep::solver

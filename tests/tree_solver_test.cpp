@@ -1,0 +1,291 @@
+// WorldSettings::solver = DirectForTrees: the linear-time tree elimination against the Eigen
+// reference on the same system, loops detected and left to the iterative solver, and the exact
+// pass bit-identical at every SIMD width and thread count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "rejection_check.hpp"
+#include "scenes/chain_scene.hpp"
+#include "softstep/reference.hpp"
+#include "softstep/softstep.hpp"
+
+namespace softstep {
+namespace {
+
+constexpr double kDt = 1.0 / 60.0;
+
+double relative(const Eigen::VectorXd& got, const Eigen::VectorXd& want) {
+  return (got - want).norm() / want.norm();
+}
+
+// The fast solve against SimplicialLDLT on the world's first sub-step, with the solver's soft
+// rigid rows (Gamma != 0) and with truly rigid ones (Gamma = 0, what the exact pass solves).
+// 1e-5 relative: both are double precision; the rest is the conditioning of a long chain.
+void expect_tree_solve_matches_reference(const World& world) {
+  reference::SoftSystem system = reference::first_substep_system(world);
+  for (int rigid = 0; rigid < 2; ++rigid) {
+    if (rigid == 1) system.softness.setZero();
+    const reference::ExactSolution exact = reference::solve_exact(system);
+    const reference::ExactSolution tree = reference::solve_tree(system);
+    ASSERT_GT(exact.impulse.norm(), 0.0);
+    EXPECT_LT(relative(tree.impulse, exact.impulse), 1e-5) << "rigid " << rigid;
+    EXPECT_LT(relative(tree.velocity - system.velocity_before,
+                       exact.velocity - system.velocity_before),
+              1e-5)
+        << "rigid " << rigid;
+  }
+}
+
+TEST(TreeSolve, EqualsTheEigenReferenceOnAThousandLinkChain) {
+  WorldSettings settings;
+  settings.substeps = 1;
+  World world(settings);
+  world.set_solve_capture(true);
+  scenes::ChainOptions o;
+  o.links = 1000;
+  o.link_masses = std::vector<double>(999, 1.0);
+  o.link_masses.push_back(1000.0);  // a heavy end: the load the iterative passes cannot carry
+  scenes::build_chain(world, o);
+  world.step(kDt);
+  expect_tree_solve_matches_reference(world);
+}
+
+// A ragdoll-like tree: a torso with a head, two arms and two legs of three links each, ball
+// and distance joints mixed, hanging from the head (one joint to the static world) or floating.
+void build_ragdoll(World& world, bool hanging) {
+  BodyDef torso_def;
+  torso_def.mass = 20.0;
+  torso_def.inertia = solid_sphere_inertia(20.0, 0.3);
+  torso_def.linear_velocity = {0.3, -1.0, 0.2};
+  torso_def.angular_velocity = {0.5, 0.0, 1.0};
+  const BodyId torso = world.create_body(torso_def);
+  const Eigen::Vector3d directions[5] = {
+      {0, 1, 0}, {1, 0.2, 0}, {-1, 0.2, 0}, {0.3, -1, 0.1}, {-0.3, -1, -0.1}};
+  BodyId head{};
+  for (int limb = 0; limb < 5; ++limb) {
+    const Eigen::Vector3d d = directions[limb].normalized();
+    BodyId previous = torso;
+    Eigen::Vector3d previous_anchor = 0.3 * d;
+    const int links = limb == 0 ? 1 : 3;
+    for (int k = 0; k < links; ++k) {
+      BodyDef link;
+      link.mass = 2.0 + limb;
+      link.inertia = solid_sphere_inertia(link.mass, 0.1);
+      link.position = (0.45 + 0.3 * k) * d;
+      link.angular_velocity = {0.1 * k, -0.2, 0.3 * limb};
+      const BodyId body = world.create_body(link);
+      if ((limb + k) % 2 == 0) {
+        BallJointDef j;
+        j.body_a = previous;
+        j.body_b = body;
+        j.local_anchor_a = previous_anchor;
+        j.local_anchor_b = -0.15 * d;
+        world.create_ball_joint(j);
+      } else {
+        DistanceJointDef j;
+        j.body_a = previous;
+        j.body_b = body;
+        j.local_anchor_a = previous_anchor;
+        j.local_anchor_b = Eigen::Vector3d::Zero();
+        j.rest_length = 0.16;
+        world.create_distance_joint(j);
+      }
+      previous = body;
+      previous_anchor = 0.15 * d;
+      if (limb == 0) head = body;
+    }
+  }
+  if (hanging) {
+    BodyDef hook;
+    hook.type = BodyType::Static;
+    hook.position = {0.0, 1.0, 0.0};
+    BallJointDef j;
+    j.body_a = world.create_body(hook);
+    j.body_b = head;
+    j.local_anchor_b = {0.0, 0.1, 0.0};
+    world.create_ball_joint(j);
+  }
+}
+
+TEST(TreeSolve, EqualsTheEigenReferenceOnABranchedTree) {
+  for (bool hanging : {true, false}) {
+    WorldSettings settings;
+    settings.substeps = 1;
+    World world(settings);
+    world.set_solve_capture(true);
+    build_ragdoll(world, hanging);
+    world.step(kDt);
+    expect_tree_solve_matches_reference(world);
+    settings.solver = SolverMode::DirectForTrees;
+    world.set_settings(settings);
+    const StepPlan& plan = world.step_plan();
+    EXPECT_EQ(plan.tree_islands, 1u) << "hanging " << hanging;
+    EXPECT_EQ(plan.tree_joints, hanging ? 14u : 13u);  // head 1 + 4 limbs x 3 (+ hook)
+  }
+}
+
+// Every body's pose and velocity, bit for bit.
+std::vector<double> body_states(const World& world) {
+  std::vector<double> out;
+  for (BodyId id : world.body_ids()) {
+    const BodyState b = world.body(id);
+    for (int k = 0; k < 3; ++k) {
+      out.push_back(b.position[k]);
+      out.push_back(b.linear_velocity[k]);
+      out.push_back(b.angular_velocity[k]);
+    }
+    for (int k = 0; k < 4; ++k) out.push_back(b.orientation.coeffs()[k]);
+  }
+  return out;
+}
+
+// A ring of six links (a loop through movable bodies) and a chain pinned at both ends (a loop
+// through the ground): neither is a tree, so DirectForTrees leaves both to the iterative
+// solver (documented in WorldSettings::solver) and the run is the iterative run bit for bit.
+void build_loops(World& world) {
+  BodyDef fixed;
+  fixed.type = BodyType::Static;
+  std::vector<BodyId> ring;
+  for (int i = 0; i < 6; ++i) {
+    BodyDef link;
+    const double angle = i * std::numbers::pi / 3.0;
+    link.position = {std::cos(angle), 3.0 + std::sin(angle), 0.0};
+    ring.push_back(world.create_body(link));
+  }
+  for (int i = 0; i < 6; ++i) {
+    BallJointDef j;
+    j.body_a = ring[i];
+    j.body_b = ring[(i + 1) % 6];
+    const BodyState a = world.body(j.body_a), b = world.body(j.body_b);
+    j.local_anchor_a = 0.5 * (b.position - a.position);
+    j.local_anchor_b = 0.5 * (a.position - b.position);
+    world.create_ball_joint(j);
+  }
+  const BodyId left = world.create_body(fixed);
+  fixed.position = {1.0, 0.0, 0.0};
+  const BodyId right = world.create_body(fixed);
+  BodyId previous = left;
+  for (int i = 0; i < 4; ++i) {
+    BodyDef link;
+    link.position = {0.2 * (i + 1), 0.0, 0.0};
+    const BodyId body = world.create_body(link);
+    BallJointDef j;
+    j.body_a = previous;
+    j.body_b = body;
+    j.local_anchor_a = {i == 0 ? 0.0 : 0.1, 0.0, 0.0};
+    j.local_anchor_b = {-0.1, 0.0, 0.0};
+    world.create_ball_joint(j);
+    previous = body;
+  }
+  BallJointDef last;
+  last.body_a = previous;
+  last.body_b = right;
+  last.local_anchor_a = {0.1, 0.0, 0.0};
+  world.create_ball_joint(last);
+}
+
+TEST(TreeSolve, LoopsAreDetectedAndSolvedIteratively) {
+  WorldSettings settings;
+  World iterative(settings);
+  build_loops(iterative);
+  settings.solver = SolverMode::DirectForTrees;
+  World direct(settings);
+  direct.set_solve_capture(true);
+  build_loops(direct);
+  const StepPlan& plan = direct.step_plan();
+  EXPECT_EQ(plan.loop_islands, 2u);
+  EXPECT_EQ(plan.tree_islands, 0u);
+  for (PlanStage stage : plan.stages) {
+    EXPECT_NE(stage, PlanStage::TreeSolve);
+    EXPECT_NE(stage, PlanStage::TreeRelax);
+  }
+  for (int i = 0; i < 30; ++i) {
+    iterative.step(kDt);
+    direct.step(kDt);
+  }
+  EXPECT_EQ(body_states(iterative), body_states(direct));
+  // The reference's tree solve refuses the same system.
+  EXPECT_THROW(reference::solve_tree(reference::first_substep_system(direct)),
+               std::invalid_argument);
+}
+
+// Two 200-link chains (two islands, so both threads have one) with a heavy end: the same bits
+// at every width and thread count, and the exact pass holds them where Gauss-Seidel lets them
+// stretch.
+TEST(TreeSolve, BitIdenticalAcrossWidthsAndThreads) {
+  std::vector<double> first;
+  for (SimdWidth width : {SimdWidth::Scalar, SimdWidth::Sse, SimdWidth::Avx2}) {
+    for (int threads : {1, 2}) {
+      WorldSettings settings;
+      settings.solver = SolverMode::DirectForTrees;
+      settings.simd = width;
+      settings.threads = threads;
+      settings.fixed_threads = true;
+      World world(settings);
+      scenes::ChainOptions o;
+      o.links = 200;
+      o.chains = 2;
+      o.link_masses = std::vector<double>(199, 1.0);
+      o.link_masses.push_back(100.0);
+      scenes::build_chain(world, o);
+      for (int i = 0; i < 20; ++i) world.step(kDt);
+      const std::vector<double> states = body_states(world);
+      if (first.empty()) {
+        first = states;
+      } else {
+        EXPECT_EQ(states, first) << simd_width_name(width) << ", " << threads << " thread(s)";
+      }
+    }
+  }
+}
+
+// More sub-steps always pay (issue 14, item 3), on the 100-link mass-ratio chain released
+// horizontally (1 kg links, 1,000 kg at the end): the worst joint gap over 10 s at least halves
+// per doubling of the sub-steps from 1 to 16, until it reaches the float floor. The floor,
+// 5e-7 m: the solver keeps a step's motion (up to 0.4 m per step for the heavy end here) and
+// the turned anchors in float, rounded at 6e-8 relative, and the gap is measured in double;
+// measured it sits at 0.5-2e-7 m from 4 sub-steps up. The iterative solver stays at 0.41 m
+// from 4 sub-steps up (its rigid rows are 60 Hz springs).
+TEST(TreeSolve, MoreSubstepsAlwaysPayOnTheMassRatioChain) {
+  constexpr double kFloatFloor = 5e-7;
+  double previous = 0.0;
+  for (int substeps : {1, 2, 4, 8, 16}) {
+    WorldSettings settings;
+    settings.solver = SolverMode::DirectForTrees;
+    settings.substeps = substeps;
+    World world(settings);
+    scenes::ChainOptions o;
+    o.link_masses = std::vector<double>(99, 1.0);
+    o.link_masses.push_back(1000.0);
+    const scenes::ChainScene scene = scenes::build_chain(world, o);
+    double worst = 0.0;
+    for (int i = 0; i < 600; ++i) {
+      world.step(kDt);
+      worst = std::max(worst, scenes::joint_errors(world, scene.joints).max);
+    }
+    RecordProperty("worst_gap_m_" + std::to_string(substeps), std::to_string(worst));
+    if (substeps > 1) {
+      EXPECT_LE(worst, std::max(0.5 * previous, kFloatFloor)) << substeps << " sub-steps";
+    }
+    previous = worst;
+  }
+}
+
+TEST(TreeSolve, RejectsAnUnknownSolverMode) {
+  struct Fixture {
+    World world;
+  };
+  WorldSettings bad;
+  bad.solver = static_cast<SolverMode>(7);
+  expect_invalid_argument([&] { World world(bad); }, "WorldSettings.solver", "7");
+  test::expect_rejected_on<Fixture>([] { return Fixture{World(WorldSettings{})}; },
+                                    [&](Fixture& f) { f.world.set_settings(bad); },
+                                    "WorldSettings.solver", "7");
+}
+
+}  // namespace
+}  // namespace softstep
