@@ -16,8 +16,9 @@ enum class Stage : std::uint8_t {
   IntegratePositions,   // (per sub-step)
   Relax,                // rigid, unbiased passes (per sub-step)
   Store,                // poses and velocities back to the world (once per step)
+  Restitution,          // the contacts' bounce pass after the sub-steps (only when asked)
 };
-inline constexpr int kStageCount = 7;
+inline constexpr int kStageCount = 8;
 const char* stage_name(Stage stage);  // "prepare", "integrate_velocities", ...
 
 // One stage run by one thread: [start, end) in microseconds since the step began.
