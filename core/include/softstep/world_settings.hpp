@@ -80,7 +80,7 @@ struct WorldSettings {
   // with. Both give the same results (up to the sign of a zero).
   bool specialize = true;
   // How the contacts given to step() are solved (contacts.hpp).
-  ContactSettings contact;
+  ContactSettings contact{};
 };
 
 }  // namespace softstep
