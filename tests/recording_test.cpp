@@ -215,7 +215,8 @@ TEST(Recording, CorruptedFilesSayWhatIsWrong) {
   const std::size_t first_record = 20 + scene_size + 8;
   const Case cases[] = {
       {"signature", 0, 'X', "not a softstep recording"},
-      {"version", 8, 2, "version 2"},
+      {"version", 8, 3, "version 3"},
+      {"version 0", 8, 0, "version 0"},
       {"scene", 20 + 2, '!', "initial scene"},
       {"unknown tag", first_record, 77, "unknown record tag 77"},
       {"initial hash", 20 + scene_size, 0x5a, "start recording before the first step"},
@@ -233,6 +234,29 @@ TEST(Recording, CorruptedFilesSayWhatIsWrong) {
   }
   std::string extra = bytes + "x";
   EXPECT_THROW(replay_recording_bytes(extra, "long.rec"), RecordingError);
+  std::filesystem::remove(path);
+}
+
+// Forces applied before start_recording are in its initial scene (issue 16): the replay
+// starts from the same state hash and every step matches.
+TEST(Recording, ForcesAppliedBeforeRecordingAreInItsInitialState) {
+  const std::string path = temp_path("pending_force");
+  std::uint64_t recorded = 0;
+  {
+    World world;
+    scenes::ChainOptions chain;
+    chain.links = 5;
+    const scenes::ChainScene built = scenes::build_chain(world, chain);
+    world.apply_force(built.links[0][3], {0.0, 40.0, 0.0}, world.body(built.links[0][3]).position);
+    world.apply_torque(built.links[0][1], {1.0, 0.0, 0.0});
+    world.start_recording(path);
+    for (int i = 0; i < 3; ++i) world.step(1.0 / 60.0);
+    world.stop_recording();
+    recorded = world.state_hash();
+  }
+  const ReplayReport report = replay_recording(path);
+  EXPECT_EQ(report.steps, 3);
+  EXPECT_EQ(report.state_hash, recorded);
   std::filesystem::remove(path);
 }
 

@@ -119,6 +119,10 @@ class LaneSolver {
   // signature as before, keeping its impulses; false when it needs a re-pack instead.
   virtual bool refresh(std::uint32_t joint_slot, const std::vector<JointSlot>& joints,
                        bool specialize) = 0;
+  // destroy_joint: turns the joint's lane into a padding lane (both bodies the static dummy,
+  // which no kernel writes), so the colouring and every other lane stay as they are; false
+  // when the joint is not in the lanes.
+  virtual bool vacate(std::uint32_t joint_slot) = 0;
   virtual const std::vector<KernelUse>& uses() const = 0;
   virtual bool needs(Pass pass) const = 0;  // some variant in the lanes runs this pass
   // extra[body] += factor * tension * |local anchor| for both bodies of every joint (tension:

@@ -37,6 +37,10 @@ struct BodyState {
   double linear_damping;
   double angular_damping;
   bool never_sleep;
+  // What apply_force and apply_torque gathered for the next step (world frame): the force, N,
+  // and the torque, N m, the forces' moments about the centre included.
+  Eigen::Vector3d force;
+  Eigen::Vector3d torque;
 };
 
 // How the solver has laid out the joints (see graph_coloring/).

@@ -42,27 +42,13 @@ struct BallKind {
 
   static std::uint8_t variant(const JointSlot& j, bool specialize);
   static std::uint32_t signature(const JointSlot&) { return 0; }
-  static int rows(std::size_t v, std::uint32_t signature);
   static bool needs_solve(std::size_t v, std::uint32_t) { return solves(v); }
   static bool needs_relax(std::size_t v, std::uint32_t) { return relaxes(v); }
-  static PlanKernel plan_kernel(std::size_t v, std::uint32_t signature);
-  static JointEffects effects(const JointSlot& j);
-  static double tension(const JointSlot& j, const float* impulse);
 
-  template <int W>
-  static void fill_lane(Group<W>& g, int lane, const JointSlot& j);
   template <int W>
   static void write_step_start(Group<W>&, int, JointSlot&, const std::vector<BodySlot>&) {}
-  template <int W>
-  static void read_impulses(const Group<W>& g, int lane, float* out);
-  template <int W>
-  static void clear_impulses(Group<W>& g);
 
-  static JointSlot make_slot(const World::Impl& w, std::string_view call, const Def& def);
-  static Def def_of(const World::Impl& w, const JointSlot& j);
-  static void reading(const World::Impl& w, const JointSlot& j, const float* impulse,
-                      JointReading& r);
-  static void hash(StateHasher& h, const JointSlot& j);
+  SOFTSTEP_JOINT_KIND_MEMBERS;
 };
 
 }  // namespace softstep

@@ -123,6 +123,11 @@ std::uint32_t axis_signature(const AxisLimit& limit, bool motor, const AxisSprin
          (spring.spring.is_free() ? 0u : simd::kAxisSpring);
 }
 
+int axis_control_rows(std::uint32_t s) {
+  return ((s & simd::kAxisLimit) ? 2 : 0) + ((s & simd::kAxisMotor) ? 1 : 0) +
+         ((s & simd::kAxisSpring) ? 1 : 0);
+}
+
 std::string axis_parts(std::uint32_t signature) {
   std::string s;
   if (signature & simd::kAxisSpring) s += " + spring";

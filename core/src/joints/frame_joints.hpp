@@ -58,6 +58,8 @@ void check_axis_spring(std::string_view call, const std::string& field, const Ax
 std::uint32_t axis_signature(const AxisLimit& limit, bool motor, const AxisSpring& spring);
 // "limit + motor + spring" for the plan.
 std::string axis_parts(std::uint32_t signature);
+// The rows the axis controls of a signature add (limit: lower and upper, motor, spring).
+int axis_control_rows(std::uint32_t signature);
 
 // Where the axis controls' impulses sit in a slot's impulse block (after the locks).
 inline constexpr int kAxisImpulses = 5;  // lower, upper, motor, spring at [5..8]

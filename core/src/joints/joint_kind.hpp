@@ -21,6 +21,9 @@
 //   effects(slot), tension(slot, impulse)
 //   template <int W> fill_lane / write_step_start / read_impulses / clear_impulses
 //   make_slot(world, call, def) (validates), def_of(world, slot), reading(...), hash(...)
+// The members defined out of line are declared by SOFTSTEP_JOINT_KIND_MEMBERS, and a kind with
+// one signature-packed kernel gets its variants and passes from SOFTSTEP_SIGNATURE_KIND_PASSES
+// (both at the end of this file; RevoluteKind uses both).
 #pragma once
 
 #include <array>
@@ -115,5 +118,56 @@ using KindKernels =
 // Defined in the generated <kind>_kernels_<width>.cpp (kind_kernels.hpp builds it).
 template <class Kind, int W>
 KindKernels<Kind, W> kind_kernels();
+
+// The contract's members that every kind defines out of line in its .cpp, declared once here;
+// a kind's struct says `SOFTSTEP_JOINT_KIND_MEMBERS;` after its Def and Group aliases.
+#define SOFTSTEP_JOINT_KIND_MEMBERS                                                        \
+  static int rows(std::size_t v, std::uint32_t signature);                                 \
+  static PlanKernel plan_kernel(std::size_t v, std::uint32_t signature);                   \
+  static JointEffects effects(const JointSlot& j);                                         \
+  static double tension(const JointSlot& j, const float* impulse);                         \
+  template <int W>                                                                         \
+  static void fill_lane(Group<W>& g, int lane, const JointSlot& j);                        \
+  template <int W>                                                                         \
+  static void read_impulses(const Group<W>& g, int lane, float* out);                      \
+  template <int W>                                                                         \
+  static void clear_impulses(Group<W>& g);                                                 \
+  static JointSlot make_slot(const World::Impl& w, std::string_view call, const Def& def); \
+  static Def def_of(const World::Impl& w, const JointSlot& j);                             \
+  static void reading(const World::Impl& w, const JointSlot& j, const float* impulse,      \
+                      JointReading& r);                                                    \
+  static void hash(StateHasher& h, const JointSlot& j)
+
+// A kind with one kernel whose runs are packed by signature (the parts a joint has), so the
+// kernel branches on the signature once per group instead of being compiled per variant. Its
+// passes are simd::prepare_<name>_joints<L>(g, ctx, sig), warm_start_<name>_joints<L>(g, b, sig)
+// and solve_<name>_joints<L, kUseBias>(g, b, ctx, sig).
+#define SOFTSTEP_SIGNATURE_KIND_PASSES(name)                                      \
+  static constexpr std::array<int, 1> variants{0};                                \
+  static constexpr bool solves(std::size_t) {                                     \
+    return true;                                                                  \
+  }                                                                               \
+  static constexpr bool relaxes(std::size_t) {                                    \
+    return true;                                                                  \
+  }                                                                               \
+  static std::uint8_t variant(const JointSlot&, bool) {                           \
+    return 0;                                                                     \
+  }                                                                               \
+  template <class L, std::size_t>                                                 \
+  static void prepare(Group<simd::kWidth<L>>& g, const simd::BodyArrays&,         \
+                      const simd::SubstepContext& ctx, std::uint32_t signature) { \
+    simd::prepare_##name##_joints<L>(g, ctx, signature);                          \
+  }                                                                               \
+  template <class L, std::size_t>                                                 \
+  static void warm_start(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,    \
+                         const simd::SubstepContext&, std::uint32_t signature) {  \
+    simd::warm_start_##name##_joints<L>(g, b, signature);                         \
+  }                                                                               \
+  template <class L, std::size_t, bool kUseBias>                                  \
+  static void solve(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,         \
+                    const simd::SubstepContext& ctx, std::uint32_t signature) {   \
+    simd::solve_##name##_joints<L, kUseBias>(g, b, ctx, signature);               \
+  }                                                                               \
+  static_assert(true, "")
 
 }  // namespace softstep

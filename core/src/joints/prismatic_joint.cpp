@@ -17,8 +17,7 @@ std::uint32_t PrismaticKind::signature(const JointSlot& j) {
 }
 
 int PrismaticKind::rows(std::size_t, std::uint32_t s) {
-  return 5 + ((s & simd::kAxisLimit) ? 2 : 0) + ((s & simd::kAxisMotor) ? 1 : 0) +
-         ((s & simd::kAxisSpring) ? 1 : 0);
+  return 5 + axis_control_rows(s);  // the 5 lock rows, then the axis controls
 }
 
 PlanKernel PrismaticKind::plan_kernel(std::size_t, std::uint32_t s) {

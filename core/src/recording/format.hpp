@@ -20,7 +20,13 @@
 namespace softstep::recording {
 
 inline constexpr char kMagic[8] = {'S', 'S', 'T', 'E', 'P', 'R', 'E', 'C'};
-inline constexpr std::uint32_t kVersion = 1;
+// Version 2 added the records ApplyForce, ApplyTorque and SetJoint: a reader of version 1
+// refuses such a file by its version instead of at the first unknown tag. Version 1 files
+// (without those records) still replay.
+inline constexpr std::uint32_t kVersion = 2;
+inline constexpr std::uint32_t kOldestVersion = 1;
+// The first record each version knows beyond version 1's.
+inline constexpr std::uint8_t kFirstVersion2Tag = 13;
 
 enum class Tag : std::uint8_t {
   Step = 1,                // f64 dt, u64 motion hash after the step

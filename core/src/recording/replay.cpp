@@ -75,6 +75,10 @@ class Replayer {
       record_at_ = in_.offset();
       const auto tag = static_cast<Tag>(in_.get<std::uint8_t>("a record's tag"));
       if (tag == Tag::End) break;
+      if (version_ < 2 && tag != Tag::End &&
+          static_cast<std::uint8_t>(tag) >= recording::kFirstVersion2Tag)
+        fail("record tag " + std::to_string(static_cast<int>(tag)) +
+             " does not exist in a recording of version 1");
       try {
         record(tag);
       } catch (const SceneFileError& e) {
@@ -103,9 +107,12 @@ class Replayer {
     if (magic != std::string(recording::kMagic, sizeof recording::kMagic))
       throw RecordingError(name_ + ": not a softstep recording (no SSTEPREC signature)");
     const auto version = in_.get<std::uint32_t>("the version");
-    if (version != recording::kVersion)
+    if (version < recording::kOldestVersion || version > recording::kVersion)
       throw RecordingError(name_ + ": a recording of version " + std::to_string(version) +
-                           "; this softstep reads version " + std::to_string(recording::kVersion));
+                           "; this softstep reads versions " +
+                           std::to_string(recording::kOldestVersion) + " to " +
+                           std::to_string(recording::kVersion));
+    version_ = version;
     const auto scene_size = in_.get<std::uint64_t>("the initial scene's length");
     const std::string scene = in_.text(scene_size, "the initial scene");
     try {
@@ -281,6 +288,7 @@ class Replayer {
   ByteReader in_;
   const std::string& name_;
   const std::function<void(World&, long, double)>& after_step_;
+  std::uint32_t version_ = 0;
   World world_;
   std::vector<BodyId> by_slot_;
   ReplayReport report_;

@@ -40,6 +40,18 @@ BodyDef read_body(ObjectReader& fields) {
   return def;
 }
 
+PendingLoads read_pending_loads(ObjectReader& fields) {
+  PendingLoads loads;
+  loads.force = fields.vec3("force", loads.force);
+  loads.torque = fields.vec3("torque", loads.torque);
+  return loads;
+}
+
+void write_pending_loads(const BodyState& state, nlohmann::json& body) {
+  if (!state.force.isZero(0.0)) body["force"] = vector_json(state.force);
+  if (!state.torque.isZero(0.0)) body["torque"] = vector_json(state.torque);
+}
+
 nlohmann::json body_json(const BodyDef& b) {
   const Quaternion& q = b.orientation;
   nlohmann::json j = {{"type", body_type_name(b.type)},

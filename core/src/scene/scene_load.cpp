@@ -48,8 +48,14 @@ World load_scene_text(const std::string& json_text, const std::string& name) {
   ids.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     ObjectReader fields(source, bodies[i], element_path(top, "bodies", i));
+    const scene::PendingLoads loads = scene::read_pending_loads(fields);
     const BodyDef def = scene::read_body(fields);
     ids.push_back(fields.call([&] { return world.create_body(def); }));
+    // At the centre, so the force adds no moment: the torque saved already holds them all.
+    if (!loads.force.isZero(0.0))
+      fields.call([&] { world.apply_force(ids.back(), loads.force, def.position); });
+    if (!loads.torque.isZero(0.0))
+      fields.call([&] { world.apply_torque(ids.back(), loads.torque); });
   }
 
   const json& joints = top.array("joints", /*optional=*/true);

@@ -26,8 +26,12 @@ std::string save_scene_text(const World& world) {
   const std::vector<BodyId> bodies = world.body_ids();
   std::vector<std::string> body_lines;
   body_lines.reserve(bodies.size());
-  for (BodyId id : bodies)
-    body_lines.push_back(scene::body_json(scene::body_def(world.body(id))).dump());
+  for (BodyId id : bodies) {
+    const BodyState state = world.body(id);
+    nlohmann::json body = scene::body_json(scene::body_def(state));
+    scene::write_pending_loads(state, body);
+    body_lines.push_back(body.dump());
+  }
 
   const scene::BodyIndex index(bodies);
   std::vector<std::string> joint_lines;

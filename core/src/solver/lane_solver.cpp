@@ -131,8 +131,27 @@ class LaneSolverImpl final : public LaneSolver {
       Kind::fill_lane(group, static_cast<int>(r.lane), j);
       done = true;
     });
-    if (done) count_uses();
-    return done;
+    return done;  // same kernel and signature: the plan's counts stand
+  }
+
+  bool vacate(std::uint32_t joint_slot) override {
+    if (!in_lanes(joint_slot)) return false;
+    const LaneRef& r = lane_of_[joint_slot];
+    // The lane keeps its settings and impulses: with the dummy at both ends every effective
+    // mass is zero and whatever it computes lands on a body no kernel writes.
+    with_lane(r, [&]<class Kind>(auto& group) {
+      group.id[r.lane] = kPadding;
+      group.body_a[r.lane] = 0;
+      group.body_b[r.lane] = 0;
+      const KernelUse key{Kind::type, r.variant, r.signature};
+      for (KernelUse& u : uses_) {
+        if (u.type == key.type && u.variant == key.variant && u.signature == key.signature) {
+          --u.joints;
+        }
+      }
+    });
+    lane_known_[joint_slot] = false;
+    return true;
   }
 
   void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
