@@ -290,6 +290,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   const simd::SubstepContext ctx = make_context(s, h);
   ContactSolver& contact_solver = *w.contact_solver;
   contact_solver.load(contacts, w.bodies, w.contact_cache, s.warm_start);
+  w.plan_contacts(contact_solver.layout());
   const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
   // Contacts run beside the joints in the same stages: with contacts, the solve stages run
   // even when no joint needs them; restitution only when some contact asks for it.
@@ -437,8 +438,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   if (threads > 1 || w.settings.threads != 1) record_step_time(w, threads, since_start() * 1e-3);
   if (profiling) {
     StepProfile& p = w.profile;
-    p.step_ms = since_start() * 1e-3;
+    p.step_ms = since_start() * 1e-3 + contact_solver.layout().load_ms;
     p.threads = threads;
+    p.contact_load_ms = contact_solver.layout().load_ms;
     p.stage_ms.fill(0.0);
     for (const StageEvent& e : events[0])
       p.stage_ms[static_cast<std::size_t>(e.stage)] += (e.end_us - e.start_us) * 1e-3;

@@ -206,6 +206,9 @@ struct World::Impl {
   // and go every step in a game, the rest of the content does not.
   void plan_forces(bool on);
   void clear_forces();  // after a step
+  // Sets the plan's contact fields and stages for this step's contacts, without rebuilding it.
+  void plan_contacts(const ContactLayout& layout);
+  std::vector<PlanStage> contact_stages;  // the stages plan_contacts added to the plan
 
   // Sleeping islands: the body slots of each, in slot order; emptied when woken.
   std::vector<std::vector<std::uint32_t>> islands;

@@ -3,6 +3,7 @@
 // stacks (warm starting, the load carried through every layer).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -197,6 +198,40 @@ TEST(ContactPhysics, RollingResistanceDeceleratesARollingBall) {
   EXPECT_NEAR(roll(0.0), v0, 1e-3);
   const double expected = v0 - 5.0 / 7.0 * c * 9.81 / r;
   EXPECT_NEAR(roll(c), expected, 0.05 * (v0 - expected));
+}
+
+// The plan shows the contact stages only while there are contacts, restitution only while
+// some contact asks for it, and a step without contacts leaves no trace of them.
+TEST(ContactPhysics, PlanShowsContactStagesOnlyWithContacts) {
+  World world(settings_without_sleep());
+  const BodyId ground = add_ground(world);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 1.0, kHalf);
+  const auto has = [&](PlanStage s) {
+    const auto& st = world.step_plan().stages;
+    return std::find(st.begin(), st.end(), s) != st.end();
+  };
+  world.step(kDt);
+  EXPECT_FALSE(has(PlanStage::PrepareContacts));
+  EXPECT_FALSE(has(PlanStage::Solve));  // no joints, no contacts: nothing to solve
+  ContactManifold m = box_on_ground(world, ground, box, kHalf, 0.0, 0.0);
+  world.step(kDt, {&m, 1});
+  EXPECT_TRUE(has(PlanStage::PrepareContacts));
+  EXPECT_TRUE(has(PlanStage::Solve));
+  EXPECT_TRUE(has(PlanStage::Relax));
+  EXPECT_FALSE(has(PlanStage::Restitution));
+  EXPECT_FALSE(world.step_plan().contact_friction);
+  EXPECT_EQ(world.step_plan().contact_manifolds, 1u);
+  EXPECT_EQ(world.step_plan().contact_points, 4u);
+  m = box_on_ground(world, ground, box, kHalf);
+  m.restitution = 0.5;
+  world.step(kDt, {&m, 1});
+  EXPECT_TRUE(has(PlanStage::Restitution));
+  EXPECT_TRUE(world.step_plan().contact_friction);
+  world.step(kDt);
+  EXPECT_FALSE(has(PlanStage::PrepareContacts));
+  EXPECT_FALSE(has(PlanStage::Restitution));
+  EXPECT_FALSE(has(PlanStage::Solve));
+  EXPECT_EQ(world.step_plan().contact_manifolds, 0u);
 }
 
 // A column of boxes on the ground, each step's manifolds made from the poses.

@@ -35,6 +35,9 @@ struct StepProfile {
   std::vector<std::vector<StageEvent>> thread_events;  // per thread, in order
   std::vector<double> barrier_wait_ms;                 // per thread: time spent waiting at barriers
   int threads = 1;
+  // Of step_ms: matching the step's contacts with the last step's, colouring and packing them
+  // (softstep's part of taking contacts; the caller's collision detection is outside the step).
+  double contact_load_ms = 0.0;
 };
 
 }  // namespace softstep

@@ -89,6 +89,17 @@ SOFTSTEP_INLINE void scatter_contact(const ContactLanes<kWidth<L>>& g, const Bod
   scatter_velocity(bodies.velocity, g.body_b, j.b);
 }
 
+// The manifold's normal and tangents.
+template <class L>
+struct ContactFrame {
+  Vec3<L> n, t1, t2;
+};
+
+template <class L>
+SOFTSTEP_INLINE ContactFrame<L> load_frame(const ContactLanes<kWidth<L>>& g) {
+  return {load3<L>(g.normal), load3<L>(g.tangent[0]), load3<L>(g.tangent[1])};
+}
+
 // Points the bodies' arms at point p's fixed anchors.
 template <class L>
 SOFTSTEP_INLINE void aim_at(JointBodies<L>& j, const ContactPointLanes<kWidth<L>>& p) {
@@ -99,9 +110,7 @@ SOFTSTEP_INLINE void aim_at(JointBodies<L>& j, const ContactPointLanes<kWidth<L>
 template <class L, std::uint32_t kSignature>
 SOFTSTEP_INLINE void prepare_contacts(ContactLanes<kWidth<L>>& g, const BodyArrays& bodies) {
   JointBodies<L> j = gather_contact<L>(g, bodies);
-  const Vec3<L> n = load3<L>(g.normal);
-  const Vec3<L> t1 = load3<L>(g.tangent[0]);
-  const Vec3<L> t2 = load3<L>(g.tangent[1]);
+  const auto [n, t1, t2] = load_frame<L>(g);
   const L count = load<L>(g.point_count);
   for (int i = 0; i < g.points; ++i) {
     auto& p = g.point[i];
@@ -131,9 +140,7 @@ SOFTSTEP_INLINE void prepare_contacts(ContactLanes<kWidth<L>>& g, const BodyArra
 template <class L, std::uint32_t kSignature>
 SOFTSTEP_INLINE void warm_start_contacts(ContactLanes<kWidth<L>>& g, const BodyArrays& bodies) {
   JointBodies<L> j = gather_contact<L>(g, bodies);
-  const Vec3<L> n = load3<L>(g.normal);
-  const Vec3<L> t1 = load3<L>(g.tangent[0]);
-  const Vec3<L> t2 = load3<L>(g.tangent[1]);
+  const auto [n, t1, t2] = load_frame<L>(g);
   for (int i = 0; i < g.points; ++i) {
     const auto& p = g.point[i];
     aim_at(j, p);
