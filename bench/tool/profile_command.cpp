@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "softstep/scene_file.hpp"
+#include "tool/plan_report.hpp"
+#include "tool/profile_recording.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
@@ -21,80 +23,6 @@ namespace softstep::tool {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// "rigid", "soft + min + max", "any (general)", "point + hinge lock + limits", ...
-std::string kernel_features(const PlanKernel& k) {
-  if (k.type != JointType::Ball && k.type != JointType::Distance) return k.parts;
-  if (k.row == SpringRow::Any) return "general (per-lane switches)";
-  std::string text = spring_row_name(k.row);
-  if (k.lower_limit) text += " + min";
-  if (k.upper_limit) text += " + max";
-  return text;
-}
-
-void print_plan(const StepPlan& plan) {
-  std::printf("plan             %s, built %llu time(s)\n",
-              plan.specialized ? "specialized" : "general (--general)",
-              static_cast<unsigned long long>(plan.builds));
-  std::string effects;
-  const auto effect = [&](bool on, const char* name) {
-    if (on) effects += (effects.empty() ? "" : ", ") + std::string(name);
-  };
-  effect(plan.gravity, "gravity");
-  effect(plan.damping, "damping");
-  effect(plan.forces, "forces");
-  effect(plan.springs, "springs");
-  effect(plan.limits, "limits");
-  effect(plan.motors, "motors");
-  effect(plan.warm_start, "warm start");
-  effect(plan.kinematic_bodies, "kinematic bodies");
-  effect(plan.unconstrained_bodies, "bodies without joints");
-  std::printf("  effects        %s\n", effects.empty() ? "none" : effects.c_str());
-  std::string stages;
-  for (PlanStage st : plan.stages)
-    stages += (stages.empty() ? "" : " ") + std::string(plan_stage_name(st));
-  std::printf("  stages         %s\n", stages.empty() ? "none" : stages.c_str());
-  std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
-              plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
-  std::printf("  kernel variants (type, features: batches, joints)\n");
-  for (const PlanKernel& k : plan.kernels) {
-    std::printf("    %-9s %-40s %8u batches %9u joints\n", joint_type_name(k.type),
-                kernel_features(k).c_str(), k.batches, k.joints);
-  }
-}
-
-nlohmann::json plan_json(const StepPlan& plan) {
-  nlohmann::json j;
-  j["specialized"] = plan.specialized ? 1 : 0;
-  j["stages"] = nlohmann::json::array();
-  for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
-  j["effects"] = {{"gravity", plan.gravity},
-                  {"damping", plan.damping},
-                  {"forces", plan.forces},
-                  {"springs", plan.springs},
-                  {"limits", plan.limits},
-                  {"warm_start", plan.warm_start},
-                  {"kinematic_bodies", plan.kinematic_bodies},
-                  {"unconstrained_bodies", plan.unconstrained_bodies}};
-  j["kernels"] = nlohmann::json::array();
-  for (const PlanKernel& k : plan.kernels) {
-    j["kernels"].push_back({{"type", joint_type_name(k.type)},
-                            {"spring_row", spring_row_name(k.row)},
-                            {"lower_limit", k.lower_limit},
-                            {"upper_limit", k.upper_limit},
-                            {"parts", k.parts},
-                            {"rows_per_joint", k.rows_per_joint},
-                            {"batches", k.batches},
-                            {"joints", k.joints}});
-  }
-  j["rows_per_pass"] = plan.rows_per_pass;
-  return j;
-}
-
-struct CsvRow {
-  double ms;
-  std::array<double, kStageCount> stages;
-};
 
 }  // namespace
 
@@ -144,6 +72,7 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
 }
 
 int profile_command(ProfileOptions o) {
+  if (o.scene.from_recording) return profile_recording(o);
   const SceneChoice& choice = o.scene;
   const long steps = o.steps;
   // A scene file's settings, overridden by the solver options given (built-in scenes start
@@ -171,7 +100,6 @@ int profile_command(ProfileOptions o) {
   check_writable_file("--trace", trace_path);
   check_writable_file("--save", o.save_path);
   check_writable_file("--record", o.record_path);
-  std::vector<CsvRow> csv_rows;
 
   World world(settings);
   const SceneRun run = build_scene(world, choice);
@@ -180,10 +108,8 @@ int profile_command(ProfileOptions o) {
   if (!o.record_path.empty()) world.start_recording(o.record_path);
 
   const double dt = 1.0 / 60.0;
-  std::vector<double> step_ms;
-  std::vector<std::array<double, kStageCount>> stage_ms;
-  std::vector<double> wait_share;
-  Trace trace;
+  StepSamples samples;
+  samples.tracing = !trace_path.empty();
   double worst_error_run = 0.0;
   const long error_every = std::max(1L, steps / 100);  // ~100 samples, outside the timed step
   const auto run_start = std::chrono::steady_clock::now();
@@ -193,38 +119,26 @@ int profile_command(ProfileOptions o) {
       const auto t0 = std::chrono::steady_clock::now();
       world.step(dt);
       const auto t1 = std::chrono::steady_clock::now();
-      step_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-      const StepProfile& p = world.last_step_profile();
-      stage_ms.push_back(p.stage_ms);
-      double waited = 0.0;
-      for (double w : p.barrier_wait_ms) waited += w;
-      wait_share.push_back(p.step_ms > 0.0 ? waited / (p.step_ms * p.threads) : 0.0);
-      if (!trace_path.empty()) {
-        trace.add_step(std::chrono::duration<double, std::micro>(t0 - run_start).count(), p);
-      }
+      samples.add(world.last_step_profile(),
+                  std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                  std::chrono::duration<double, std::micro>(t0 - run_start).count());
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
       }
-      if (!csv_path.empty()) csv_rows.push_back({step_ms.back(), p.stage_ms});
       bar.update(i + 1);
     }
   }
   world.stop_recording();
   const scenes::JointErrors errors = scenes::joint_errors(world, run.joints);
   const SolverLayout layout = world.solver_layout();
-  const double ms = median(step_ms);
+  const double ms = median(samples.step_ms);
   // Each sub-step solves every row `iterations` times and relaxes it `relax` times, unless
   // the plan runs no relax pass (springs only: springs are not relaxed).
   const std::vector<PlanStage>& planned = world.step_plan().stages;
   const bool relaxed = std::find(planned.begin(), planned.end(), PlanStage::Relax) != planned.end();
   const double row_solves = run.rows * settings.substeps *
                             (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));
-  std::array<double, kStageCount> stage_median{};
-  for (int k = 0; k < kStageCount; ++k) {
-    std::vector<double> v;
-    for (const auto& s : stage_ms) v.push_back(s[static_cast<std::size_t>(k)]);
-    stage_median[static_cast<std::size_t>(k)] = median(v);
-  }
+  const StageTimes stage_median = stage_medians(samples.stage_ms);
   const double stretch = run.stretch_ratio ? run.stretch_ratio() : kNaN;
 
   std::printf("scene            %s\n", run.description.c_str());
@@ -247,16 +161,11 @@ int profile_command(ProfileOptions o) {
     std::printf("\n");
     print_plan(world.step_plan());
   }
-  std::printf("\n  stage                  ms/step   share\n");
-  for (int k = 0; k < kStageCount; ++k) {
-    const double v = stage_median[static_cast<std::size_t>(k)];
-    std::printf("  %-22s %8.3f  %5.1f %%\n", stage_name(static_cast<Stage>(k)), v,
-                ms > 0 ? 100.0 * v / ms : 0.0);
-  }
+  print_stage_table(stage_median, ms);
   std::printf("  %-22s %8.3f  (median of %ld steps)\n\n", "step", ms, steps);
   std::printf("row solves / s   %.3g (ns per row solve %.2f)\n", row_solves / (ms * 1e-3),
               ms * 1e6 / row_solves);
-  std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(wait_share));
+  std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(samples.wait_share));
   std::printf(
       "joint error      max %.6g m, rms %.6g m after the last step; worst over the run %.6g m\n",
       errors.max, errors.rms, worst_error_run);
@@ -269,9 +178,6 @@ int profile_command(ProfileOptions o) {
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {
-    nlohmann::json stages;
-    for (int k = 0; k < kStageCount; ++k)
-      stages[stage_name(static_cast<Stage>(k))] = stage_median[static_cast<std::size_t>(k)];
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx",
                   static_cast<unsigned long long>(world.state_hash()));
@@ -286,9 +192,9 @@ int profile_command(ProfileOptions o) {
                               {"threads", world.last_step_profile().threads},
                               {"simd", simd_width_name(layout.simd)},
                               {"ms_per_step", ms},
-                              {"stage_ms", stages},
+                              {"stage_ms", stage_json(stage_median)},
                               {"rows_per_second", row_solves / (ms * 1e-3)},
-                              {"barrier_wait_share", median(wait_share)},
+                              {"barrier_wait_share", median(samples.wait_share)},
                               {"colors", layout.colors_used},
                               {"overflow_joints", layout.overflow_joints},
                               {"max_joint_error_m", errors.max},
@@ -301,19 +207,8 @@ int profile_command(ProfileOptions o) {
                               {"state_hash", hash}};
     write_file(json_path, j.dump(2) + "\n");
   }
-  if (!csv_path.empty()) {
-    std::string csv = "step,ms";
-    for (int k = 0; k < kStageCount; ++k)
-      csv += std::string(",") + stage_name(static_cast<Stage>(k)) + "_ms";
-    csv += "\n";
-    for (std::size_t i = 0; i < csv_rows.size(); ++i) {
-      csv += std::to_string(i) + "," + format_number(csv_rows[i].ms);
-      for (double v : csv_rows[i].stages) csv += "," + format_number(v);
-      csv += "\n";
-    }
-    write_file(csv_path, csv);
-  }
-  if (!trace_path.empty()) write_file(trace_path, trace.text());
+  if (!csv_path.empty()) write_file(csv_path, steps_csv(samples.step_ms, samples.stage_ms));
+  if (!trace_path.empty()) write_file(trace_path, samples.trace.text());
   return 0;
 }
 

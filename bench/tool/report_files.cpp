@@ -88,4 +88,53 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+void StepSamples::add(const StepProfile& p, double ms, double start_us) {
+  step_ms.push_back(ms);
+  stage_ms.push_back(p.stage_ms);
+  double waited = 0.0;
+  for (double w : p.barrier_wait_ms) waited += w;
+  wait_share.push_back(p.step_ms > 0.0 ? waited / (p.step_ms * p.threads) : 0.0);
+  if (tracing) trace.add_step(start_us, p);
+}
+
+StageTimes stage_medians(const std::vector<StageTimes>& steps) {
+  StageTimes out{};
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    std::vector<double> v;
+    v.reserve(steps.size());
+    for (const StageTimes& s : steps) v.push_back(s[k]);
+    out[k] = median(v);
+  }
+  return out;
+}
+
+void print_stage_table(const StageTimes& medians, double step_ms) {
+  std::printf("\n  stage                  ms/step   share\n");
+  for (int k = 0; k < kStageCount; ++k) {
+    const double v = medians[static_cast<std::size_t>(k)];
+    std::printf("  %-22s %8.3f  %5.1f %%\n", stage_name(static_cast<Stage>(k)), v,
+                step_ms > 0 ? 100.0 * v / step_ms : 0.0);
+  }
+}
+
+nlohmann::json stage_json(const StageTimes& medians) {
+  nlohmann::json stages;
+  for (int k = 0; k < kStageCount; ++k)
+    stages[stage_name(static_cast<Stage>(k))] = medians[static_cast<std::size_t>(k)];
+  return stages;
+}
+
+std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages) {
+  std::string csv = "step,ms";
+  for (int k = 0; k < kStageCount; ++k)
+    csv += std::string(",") + stage_name(static_cast<Stage>(k)) + "_ms";
+  csv += "\n";
+  for (std::size_t i = 0; i < step_ms.size() && i < stages.size(); ++i) {
+    csv += std::to_string(i) + "," + format_number(step_ms[i]);
+    for (double v : stages[i]) csv += "," + format_number(v);
+    csv += "\n";
+  }
+  return csv;
+}
+
 }  // namespace softstep::tool

@@ -2,6 +2,8 @@
 // built with nlohmann::json where they are filled.
 #pragma once
 
+#include <array>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,14 @@ namespace softstep::tool {
 
 // The median (upper median for an even count), 0 for none.
 double median(std::vector<double> values);
+
+// Per-stage times of a run's steps (StepProfile::stage_ms, one array per step): each stage's
+// median, the table `softstep profile` prints (share of `step_ms`), and the --csv text.
+using StageTimes = std::array<double, kStageCount>;
+StageTimes stage_medians(const std::vector<StageTimes>& steps);
+void print_stage_table(const StageTimes& medians, double step_ms);
+nlohmann::json stage_json(const StageTimes& medians);
+std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages);
 
 // A number with 10 significant digits for CSV, "null" when it is not finite.
 std::string format_number(double value);
@@ -28,6 +38,19 @@ class Trace {
     double start_us, duration_us;
   };
   std::vector<Event> events_;
+};
+
+// What `softstep profile` keeps of each step: its time, its stages, the threads' share of
+// time waiting at barriers, and (when traced) its events.
+struct StepSamples {
+  bool tracing = false;
+  std::vector<double> step_ms;
+  std::vector<StageTimes> stage_ms;
+  std::vector<double> wait_share;
+  Trace trace;
+  // step_ms: the step's time as the caller measured it; start_us: when it started on the
+  // trace's clock.
+  void add(const StepProfile& profile, double step_ms, double start_us);
 };
 
 // Text made safe inside HTML or SVG: <, > and & escaped.

@@ -15,7 +15,8 @@ namespace softstep::tool {
 
 const char* const kSceneHelp =
     "Scenes (default chain), or the path of a scene file (softstep profile ... --save FILE\n"
-    "writes one; README \"Your own scene\" has the format):\n"
+    "writes one; README \"Your own scene\" has the format), or for profile a recording\n"
+    "(profile ... --record FILE), replayed with every step checked:\n"
     "  chain   N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally (or\n"
     "          hanging straight down, unstretched), the first link jointed to the static world;\n"
     "          M parallel chains 1 m apart. --end-mass: the last link weighs KG instead (a\n"
@@ -32,6 +33,12 @@ const char* const kSceneHelp =
     "          a vertical slider to the one below, on springs of 4 Hz (or --hertz) within\n"
     "          -0.2 .. +0.1 m of their 0.5 m spacing.\n"
     "Joints are rigid unless --hertz gives them springs.";
+
+bool is_recording_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char magic[8] = {};
+  return in.read(magic, sizeof magic) && std::string(magic, sizeof magic) == "SSTEPREC";
+}
 
 void add_scene_options(CLI::App& cmd, SceneChoice& c) {
   c.chain.links = 10000;
@@ -81,8 +88,10 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
   add_joint_scene_options(cmd, c);
 
   cmd.parse_complete_callback([&cmd, &c] {
-    c.from_file =
-        c.scene != "chain" && c.scene != "grid" && c.scene != "bridge" && !is_joint_scene(c.scene);
+    const bool named =
+        c.scene == "chain" || c.scene == "grid" || c.scene == "bridge" || is_joint_scene(c.scene);
+    c.from_recording = !named && is_recording_file(c.scene);
+    c.from_file = !named && !c.from_recording;
     const auto only_for = [&](const char* flag, const char* owner) {
       if (c.scene != owner && cmd.count(flag) > 0)
         throw CLI::ValidationError(flag,
@@ -93,11 +102,13 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
       for (const char* flag : {"--links", "--chains"}) only_for(flag, "chain");
     }
     only_for("--size", "grid");
-    if (c.from_file) {
+    if (c.from_file || c.from_recording) {
       for (const char* flag : {"--hertz", "--zeta"}) {
         if (cmd.count(flag) > 0)
           throw CLI::ValidationError(flag, "not for a scene file (its joints carry their springs)");
       }
+    }
+    if (c.from_file) {
       // Loaded once here, so that a bad file is reported before anything runs.
       std::ifstream in(c.scene, std::ios::binary);
       std::stringstream text;

@@ -34,6 +34,8 @@ struct SceneChoice {
   double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
   double hinge_limit_deg = 0.0;  // hinge-chain --limit, degrees
   std::string joint = "ball", layout = "horizontal";
+  // A recording (World::start_recording): `softstep profile` replays it (profile_recording.hpp).
+  bool from_recording = false;
   // A scene file: its text (read once, loaded for every run) and its settings.
   bool from_file = false;
   std::string file_text;
@@ -58,6 +60,9 @@ struct SceneRun {
   // of the sweep's energy drift). A scene file: the diagonal of its bodies' bounding box.
   double reach = 0.0;
 };
+
+// True when the file starts with a recording's signature (a scene file is JSON).
+bool is_recording_file(const std::string& path);
 
 // The settings a run starts from: the scene file's, or the defaults for a built-in scene. The
 // commands then apply the solver options they were given.

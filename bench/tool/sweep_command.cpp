@@ -168,6 +168,12 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
 
 int sweep_command(const SweepOptions& o) {
   const SceneChoice& choice = o.scene;
+  // A sweep changes the settings, so a recording's steps would no longer match it; sweeping
+  // the calls of a recording unchecked is not built yet.
+  if (choice.from_recording)
+    throw UsageError(choice.scene +
+                     " is a recording: softstep profile and replay take it; sweep takes a scene "
+                     "or a scene file (softstep profile ... --save FILE)");
   const std::string& out = o.out;
   const long steps = o.steps;
   const std::vector<long>& substeps = o.substeps;

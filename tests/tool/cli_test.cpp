@@ -209,6 +209,26 @@ TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
   const ToolRun cut = run_tool("replay " + dir + "/cut.rec");
   EXPECT_EQ(cut.exit_code, 1);
   EXPECT_NE(cut.err.find("cut.rec"), std::string::npos) << cut.err;
+
+  // profile FILE.rec replays it with profiling on: every step checked, the stage table, the
+  // same final state; options that would change a step are refused by name.
+  const ToolRun profiled = run_tool("profile " + dir + "/run.rec --json " + dir + "/rec.json");
+  EXPECT_EQ(profiled.exit_code, 0) << profiled.err;
+  EXPECT_NE(profiled.out.find("30 steps and 0 other calls replayed, every step matched"),
+            std::string::npos)
+      << profiled.out;
+  EXPECT_NE(profiled.out.find("solve"), std::string::npos) << profiled.out;
+  EXPECT_NE(profiled.out.find(hash), std::string::npos) << profiled.out;
+  const nlohmann::json report = nlohmann::json::parse(read_text(dir + "/rec.json"));
+  EXPECT_EQ(report["steps"], 30);
+  EXPECT_GT(report["ms_per_step"].get<double>(), 0.0);
+  const ToolRun changed = run_tool("profile " + dir + "/run.rec --substeps 8");
+  EXPECT_NE(changed.exit_code, 0);
+  EXPECT_NE(changed.err.find("--substeps cannot be used with a recording"), std::string::npos)
+      << changed.err;
+  const ToolRun cut_profile = run_tool("profile " + dir + "/cut.rec");
+  EXPECT_EQ(cut_profile.exit_code, 1);
+  EXPECT_NE(cut_profile.err.find("cut.rec"), std::string::npos) << cut_profile.err;
 }
 
 }  // namespace

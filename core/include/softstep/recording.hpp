@@ -26,6 +26,18 @@ struct ReplayReport {
   std::uint64_t state_hash = 0;  // World::state_hash() at the end, equal to the recorded one
 };
 
+// What a caller may do around a replay without changing it.
+struct ReplayHooks {
+  // Once, on the world loaded from the initial scene, before any record is replayed: to turn
+  // on profiling, or to pick the threads or SIMD width (settings that never change a result).
+  // Anything that changes what a step computes makes the replay fail at that step.
+  std::function<void(World& world)> on_start;
+  std::function<void(World& world, long step, double dt)> after_step;
+};
+ReplayReport replay_recording(const std::string& path, const ReplayHooks& hooks);
+ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,
+                                    const ReplayHooks& hooks);
+
 // Re-runs the recording at `path`. `after_step` (optional) sees the world after each step,
 // for profiling or viewing a replay. Throws RecordingError.
 ReplayReport replay_recording(

@@ -61,9 +61,8 @@ class ByteReader {
 
 class Replayer {
  public:
-  Replayer(const std::string& bytes, const std::string& name,
-           const std::function<void(World&, long, double)>& after_step)
-      : in_(bytes, name), name_(name), after_step_(after_step) {}
+  Replayer(const std::string& bytes, const std::string& name, const ReplayHooks& hooks)
+      : in_(bytes, name), name_(name), hooks_(hooks) {}
 
   ReplayReport run() {
     header();
@@ -130,6 +129,7 @@ class Replayer {
           "warm-start impulses, sleep state or ids a scene does not hold; start recording before "
           "the first step");
     for (BodyId id : world_.body_ids()) remember(id);
+    if (hooks_.on_start) hooks_.on_start(world_);
   }
 
   void remember(BodyId id) {
@@ -186,7 +186,7 @@ class Replayer {
                                " diverged: motion hash " + hex(now) + ", the recording has " +
                                hex(recorded) + " (record at byte " + std::to_string(record_at_) +
                                ")");
-        if (after_step_) after_step_(world_, report_.steps, dt);
+        if (hooks_.after_step) hooks_.after_step(world_, report_.steps, dt);
         return;
       }
       case Tag::CreateBody: {
@@ -287,7 +287,7 @@ class Replayer {
 
   ByteReader in_;
   const std::string& name_;
-  const std::function<void(World&, long, double)>& after_step_;
+  const ReplayHooks& hooks_;
   std::uint32_t version_ = 0;
   World world_;
   std::vector<BodyId> by_slot_;
@@ -298,17 +298,26 @@ class Replayer {
 }  // namespace
 
 ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,
-                                    const std::function<void(World&, long, double)>& after_step) {
-  return Replayer(bytes, name, after_step).run();
+                                    const ReplayHooks& hooks) {
+  return Replayer(bytes, name, hooks).run();
 }
 
-ReplayReport replay_recording(const std::string& path,
-                              const std::function<void(World&, long, double)>& after_step) {
+ReplayReport replay_recording(const std::string& path, const ReplayHooks& hooks) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw RecordingError(path + ": cannot open the file");
   std::stringstream bytes;
   bytes << in.rdbuf();
-  return replay_recording_bytes(bytes.str(), path, after_step);
+  return replay_recording_bytes(bytes.str(), path, hooks);
+}
+
+ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,
+                                    const std::function<void(World&, long, double)>& after_step) {
+  return replay_recording_bytes(bytes, name, ReplayHooks{{}, after_step});
+}
+
+ReplayReport replay_recording(const std::string& path,
+                              const std::function<void(World&, long, double)>& after_step) {
+  return replay_recording(path, ReplayHooks{{}, after_step});
 }
 
 }  // namespace softstep

@@ -1,0 +1,83 @@
+#include "tool/plan_report.hpp"
+
+#include <cstdio>
+#include <string>
+
+#include "softstep/softstep.hpp"
+
+namespace softstep::tool {
+
+namespace {
+
+// "rigid", "soft + min + max", "any (general)", "point + hinge lock + limits", ...
+std::string kernel_features(const PlanKernel& k) {
+  if (k.type != JointType::Ball && k.type != JointType::Distance) return k.parts;
+  if (k.row == SpringRow::Any) return "general (per-lane switches)";
+  std::string text = spring_row_name(k.row);
+  if (k.lower_limit) text += " + min";
+  if (k.upper_limit) text += " + max";
+  return text;
+}
+
+}  // namespace
+
+void print_plan(const StepPlan& plan) {
+  std::printf("plan             %s, built %llu time(s)\n",
+              plan.specialized ? "specialized" : "general (--general)",
+              static_cast<unsigned long long>(plan.builds));
+  std::string effects;
+  const auto effect = [&](bool on, const char* name) {
+    if (on) effects += (effects.empty() ? "" : ", ") + std::string(name);
+  };
+  effect(plan.gravity, "gravity");
+  effect(plan.damping, "damping");
+  effect(plan.forces, "forces");
+  effect(plan.springs, "springs");
+  effect(plan.limits, "limits");
+  effect(plan.motors, "motors");
+  effect(plan.warm_start, "warm start");
+  effect(plan.kinematic_bodies, "kinematic bodies");
+  effect(plan.unconstrained_bodies, "bodies without joints");
+  std::printf("  effects        %s\n", effects.empty() ? "none" : effects.c_str());
+  std::string stages;
+  for (PlanStage st : plan.stages)
+    stages += (stages.empty() ? "" : " ") + std::string(plan_stage_name(st));
+  std::printf("  stages         %s\n", stages.empty() ? "none" : stages.c_str());
+  std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
+              plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
+  std::printf("  kernel variants (type, features: batches, joints)\n");
+  for (const PlanKernel& k : plan.kernels) {
+    std::printf("    %-9s %-40s %8u batches %9u joints\n", joint_type_name(k.type),
+                kernel_features(k).c_str(), k.batches, k.joints);
+  }
+}
+
+nlohmann::json plan_json(const StepPlan& plan) {
+  nlohmann::json j;
+  j["specialized"] = plan.specialized ? 1 : 0;
+  j["stages"] = nlohmann::json::array();
+  for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
+  j["effects"] = {{"gravity", plan.gravity},
+                  {"damping", plan.damping},
+                  {"forces", plan.forces},
+                  {"springs", plan.springs},
+                  {"limits", plan.limits},
+                  {"warm_start", plan.warm_start},
+                  {"kinematic_bodies", plan.kinematic_bodies},
+                  {"unconstrained_bodies", plan.unconstrained_bodies}};
+  j["kernels"] = nlohmann::json::array();
+  for (const PlanKernel& k : plan.kernels) {
+    j["kernels"].push_back({{"type", joint_type_name(k.type)},
+                            {"spring_row", spring_row_name(k.row)},
+                            {"lower_limit", k.lower_limit},
+                            {"upper_limit", k.upper_limit},
+                            {"parts", k.parts},
+                            {"rows_per_joint", k.rows_per_joint},
+                            {"batches", k.batches},
+                            {"joints", k.joints}});
+  }
+  j["rows_per_pass"] = plan.rows_per_pass;
+  return j;
+}
+
+}  // namespace softstep::tool
