@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "contacts/contact_validation.hpp"
 #include "recording/recorder.hpp"
 #include "solver/team.hpp"
 #include "validation.hpp"
@@ -62,7 +63,8 @@ ThreadChoice step_threads(World::Impl& w) {
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
   if (w.settings.fixed_threads) return {allowed, false};  // the user's count, not the policy's
   // Sleeping bodies and joints are no work.
-  const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3;
+  const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3 +
+                           w.contact_solver->layout().points;
   if (allowed <= 1 || work < kMinWorkToShare) return {1, false};
   return {w.thread_policy.all_threads() ? allowed : 1, true};
 }
@@ -236,6 +238,31 @@ void World::Impl::finalize_bodies(const solver::Share& share) {
 }
 
 void World::step(double dt) {
+  step(dt, {});
+}
+
+const std::vector<ContactReading>& World::contact_readings() const {
+  return impl_->contact_readings;
+}
+
+namespace {
+
+// A contact between a sleeping body and an awake dynamic one wakes the sleeper (its island
+// was resting on, or is being hit by, something that moves).
+void wake_touched(World::Impl& w, std::span<const ContactManifold> contacts) {
+  const auto moving = [&](std::uint32_t s) {
+    return w.bodies[s].type == BodyType::Dynamic && !w.bodies[s].asleep;
+  };
+  for (const ContactManifold& m : contacts) {
+    const std::uint32_t a = m.body_a.index, b = m.body_b.index;
+    if (w.bodies[a].asleep && moving(b)) w.touch(a);
+    if (w.bodies[b].asleep && moving(a)) w.touch(b);
+  }
+}
+
+}  // namespace
+
+void World::step(double dt, std::span<const ContactManifold> contacts) {
   Impl& w = *impl_;
   if (!(std::isfinite(dt) && dt > 0.0)) {
     validation::reject("step", "dt", validation::format(dt), "must be finite and > 0 s");
@@ -249,11 +276,21 @@ void World::step(double dt) {
                            validation::format(validation::kMaxSubstep) + "] s");
   }
   const float h = static_cast<float>(substep);
+  validation::contacts("step", w, contacts);
+  wake_touched(w, contacts);
   // A step that colours and packs, or lists the bodies anew, first touches fresh memory: its
   // time says nothing about the thread count.
   const bool fresh_content = !w.joints_packed || !w.bodies_listed;
   w.build_plan();
   const simd::SubstepContext ctx = make_context(s, h);
+  ContactSolver& contact_solver = *w.contact_solver;
+  contact_solver.load(contacts, w.bodies, w.contact_cache, s.warm_start);
+  w.plan_contacts(contact_solver.layout());
+  const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
+  // Contacts run beside the joints in the same stages: with contacts, the solve stages run
+  // even when no joint needs them; restitution only when some contact asks for it.
+  const bool has_contacts = !contact_solver.empty();
+  const bool restitution = has_contacts && contact_solver.layout().restitution;
   // Serial: the geometric inertia (joints add into shared bodies).
   w.geometric_inertia(h, w.last_substep);
   // New joints have no force yet, so their bodies got no geometric inertia from them: a link of
@@ -305,6 +342,10 @@ void World::step(double dt) {
           solver.prepare(w.joints, w.bodies, arrays, ctx, share);
           solver::team_barrier(share);
         }
+        if (has_contacts) {
+          contact_solver.prepare(arrays, ctx, share);
+          solver::team_barrier(share);
+        }
       });
     }
     for (int sub = 0; sub < s.substeps; ++sub) {
@@ -323,17 +364,26 @@ void World::step(double dt) {
         if (share.thread == 0) w.capture_before_solve();
         solver::team_barrier(share);  // the warm start writes the velocities just copied
       }
-      if (planned(PlanStage::WarmStart)) {
-        stage(Stage::WarmStart, [&] { solver.warm_start(arrays, ctx, share); });
-      } else if (planned(PlanStage::ClearImpulses)) {
+      if (planned(PlanStage::WarmStart) || planned(PlanStage::ClearImpulses) ||
+          (has_contacts && s.warm_start)) {
         stage(Stage::WarmStart, [&] {
-          solver.clear_impulses(share);
-          solver::team_barrier(share);
+          if (planned(PlanStage::WarmStart)) {
+            solver.warm_start(arrays, ctx, share);
+          } else if (planned(PlanStage::ClearImpulses)) {
+            solver.clear_impulses(share);
+            solver::team_barrier(share);
+          }
+          if (has_contacts && s.warm_start) {
+            contact_solver.warm_start(arrays, ctx, contact_ctx, share);
+          }
         });
       }
-      if (planned(PlanStage::Solve)) {
+      if (planned(PlanStage::Solve) || has_contacts) {
         stage(Stage::Solve, [&] {
-          for (int i = 0; i < s.solve_iterations; ++i) solver.solve(arrays, ctx, share);
+          for (int i = 0; i < s.solve_iterations; ++i) {
+            if (planned(PlanStage::Solve)) solver.solve(arrays, ctx, share);
+            if (has_contacts) contact_solver.solve(arrays, ctx, contact_ctx, share);
+          }
         });
       }
       if (planned(PlanStage::TreeSolve)) {
@@ -351,9 +401,12 @@ void World::step(double dt) {
           solver::team_barrier(share);
         });
       }
-      if (planned(PlanStage::Relax)) {
+      if (planned(PlanStage::Relax) || (has_contacts && s.relax_iterations > 0)) {
         stage(Stage::Relax, [&] {
-          for (int r = 0; r < s.relax_iterations; ++r) solver.relax(arrays, ctx, share);
+          for (int r = 0; r < s.relax_iterations; ++r) {
+            if (planned(PlanStage::Relax)) solver.relax(arrays, ctx, share);
+            if (has_contacts) contact_solver.relax(arrays, ctx, contact_ctx, share);
+          }
         });
       }
       if (planned(PlanStage::TreeRelax)) {
@@ -362,6 +415,10 @@ void World::step(double dt) {
           solver::team_barrier(share);
         });
       }
+    }
+    if (restitution) {
+      stage(Stage::Restitution,
+            [&] { contact_solver.restitute(arrays, ctx, contact_ctx, share); });
     }
     if (planned(PlanStage::Store)) stage(Stage::Store, [&] { w.finalize_bodies(share); });
   };
@@ -389,9 +446,10 @@ void World::step(double dt) {
   if (choice.by_policy) w.thread_policy.record(since_start() * 1e-3, fresh_content);
   if (profiling) {
     StepProfile& p = w.profile;
-    p.step_ms = since_start() * 1e-3;
+    p.step_ms = since_start() * 1e-3 + contact_solver.layout().load_ms;
     p.threads = threads;
     p.thread_switches = w.thread_policy.switches();
+    p.contact_load_ms = contact_solver.layout().load_ms;
     p.stage_ms.fill(0.0);
     for (const StageEvent& e : events[0])
       p.stage_ms[static_cast<std::size_t>(e.stage)] += (e.end_us - e.start_us) * 1e-3;
@@ -399,6 +457,8 @@ void World::step(double dt) {
     p.barrier_wait_ms.clear();
     for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
+  contact_solver.store(contacts, w.contact_cache, w.contact_cache_next, w.contact_readings);
+  std::swap(w.contact_cache, w.contact_cache_next);
   w.last_substep = h;
   w.joints_without_history = false;
   w.clear_forces();
@@ -440,6 +500,8 @@ const char* stage_name(Stage stage) {
       return "relax";
     case Stage::Store:
       return "store";
+    case Stage::Restitution:
+      return "restitution";
   }
   return "?";
 }

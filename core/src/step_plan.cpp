@@ -89,7 +89,39 @@ void World::Impl::build_plan() {
   add(exact && settings.relax_iterations > 0, PlanStage::TreeRelax);
   add(bodies_awake, PlanStage::Store);
   plan = std::move(p);
+  contact_stages.clear();  // a new plan: the next step's contacts add theirs
   plan_built = true;
+}
+
+void World::Impl::plan_contacts(const ContactLayout& c) {
+  StepPlan& p = plan;
+  p.contact_manifolds = c.manifolds;
+  p.contact_points = c.points;
+  p.contact_colors = c.colors;
+  p.contact_overflow = c.overflow;
+  p.contact_friction = (c.signatures & simd::kContactFriction) != 0;
+  p.contact_rolling = (c.signatures & simd::kContactRolling) != 0;
+  p.contact_restitution = c.restitution;
+  // Take out what the last step's contacts added, then add what this step's need: the content
+  // plan and plan_forces keep their own stages.
+  std::vector<PlanStage>& stages = p.stages;
+  for (PlanStage s : contact_stages) {
+    stages.erase(std::remove(stages.begin(), stages.end(), s), stages.end());
+  }
+  contact_stages.clear();
+  if (c.manifolds == 0) return;
+  const auto add = [&](bool on, PlanStage stage) {
+    if (!on || std::find(stages.begin(), stages.end(), stage) != stages.end()) return;
+    // Stages are listed in enum order.
+    stages.insert(std::find_if(stages.begin(), stages.end(), [&](PlanStage s) { return s > stage; }),
+                  stage);
+    contact_stages.push_back(stage);
+  };
+  add(true, PlanStage::PrepareContacts);
+  add(settings.warm_start, PlanStage::WarmStart);
+  add(true, PlanStage::Solve);
+  add(settings.relax_iterations > 0, PlanStage::Relax);
+  add(c.restitution, PlanStage::Restitution);
 }
 
 const StepPlan& World::step_plan() const {
@@ -103,6 +135,8 @@ const char* plan_stage_name(PlanStage stage) {
       return "prepare_bodies";
     case PlanStage::PrepareJoints:
       return "prepare_joints";
+    case PlanStage::PrepareContacts:
+      return "prepare_contacts";
     case PlanStage::Gravity:
       return "gravity";
     case PlanStage::Damping:
@@ -125,6 +159,8 @@ const char* plan_stage_name(PlanStage stage) {
       return "integrate_positions";
     case PlanStage::Relax:
       return "relax";
+    case PlanStage::Restitution:
+      return "restitution";
     case PlanStage::Store:
       return "store";
   }

@@ -204,6 +204,11 @@ void settings(std::string_view call, const WorldSettings& s) {
                "] rad (a quarter turn)");
   }
   non_negative(call, "WorldSettings.rigid_damping_ratio", s.rigid_damping_ratio);
+  positive(call, "WorldSettings.contact.hertz", s.contact.hertz);
+  non_negative(call, "WorldSettings.contact.damping_ratio", s.contact.damping_ratio);
+  positive(call, "WorldSettings.contact.max_push_out_speed", s.contact.max_push_out_speed);
+  non_negative(call, "WorldSettings.contact.restitution_threshold",
+               s.contact.restitution_threshold);
   positive(call, "WorldSettings.max_correction_speed", s.max_correction_speed);
   non_negative(call, "WorldSettings.sleep_linear_speed", s.sleep_linear_speed);
   non_negative(call, "WorldSettings.sleep_angular_speed", s.sleep_angular_speed);

@@ -109,6 +109,7 @@ World::World(const WorldSettings& settings) : impl_(std::make_unique<Impl>()) {
   impl_->width = resolve_width("World", settings.simd);
   impl_->settings = settings;
   impl_->lane_solver = make_lane_solver(impl_->width);
+  impl_->contact_solver = make_contact_solver(impl_->width);
 }
 
 World::~World() = default;
@@ -136,6 +137,7 @@ void World::set_settings(const WorldSettings& settings) {
   if (width != w.width || settings.specialize != w.settings.specialize) w.unpack_joints();
   if (width != w.width) {
     w.lane_solver = make_lane_solver(width);
+    w.contact_solver = make_contact_solver(width);
     w.width = width;
   }
   w.settings = settings;

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "contacts/contact_solver.hpp"
 #include "joints/joint_registry.hpp"
 #include "softstep/graph_coloring/graph_coloring.hpp"
 #include "softstep/simd/body_integration.hpp"
@@ -177,6 +178,12 @@ struct World::Impl {
   graph_coloring::GraphColoring coloring;
   SimdWidth width = SimdWidth::Scalar;  // resolved, never Best
   std::unique_ptr<LaneSolver> lane_solver;
+  // The step's contacts (contacts/contact_solver.hpp), the impulses the last step's left for
+  // warm starting, and what they applied.
+  std::unique_ptr<ContactSolver> contact_solver;
+  ContactCache contact_cache;
+  ContactCache contact_cache_next;  // filled by a step, then swapped in
+  std::vector<ContactReading> contact_readings;
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;
@@ -205,6 +212,9 @@ struct World::Impl {
   // and go every step in a game, the rest of the content does not.
   void plan_forces(bool on);
   void clear_forces();  // after a step
+  // Sets the plan's contact fields and stages for this step's contacts, without rebuilding it.
+  void plan_contacts(const ContactLayout& layout);
+  std::vector<PlanStage> contact_stages;  // the stages plan_contacts added to the plan
 
   // Sleeping islands: the body slots of each, in slot order; emptied when woken.
   std::vector<std::vector<std::uint32_t>> islands;

@@ -16,8 +16,9 @@ enum class Stage : std::uint8_t {
   IntegratePositions,   // (per sub-step)
   Relax,                // rigid, unbiased passes (per sub-step)
   Store,                // poses and velocities back to the world (once per step)
+  Restitution,          // the contacts' bounce pass after the sub-steps (only when asked)
 };
-inline constexpr int kStageCount = 7;
+inline constexpr int kStageCount = 8;
 const char* stage_name(Stage stage);  // "prepare", "integrate_velocities", ...
 
 // One stage run by one thread: [start, end) in microseconds since the step began.
@@ -38,6 +39,9 @@ struct StepProfile {
   // trials of the other count included): a count that keeps rising means two threads and
   // one run about equally fast, or another process takes a core from time to time.
   long thread_switches = 0;
+  // Of step_ms: matching the step's contacts with the last step's, colouring and packing them
+  // (softstep's part of taking contacts; the caller's collision detection is outside the step).
+  double contact_load_ms = 0.0;
 };
 
 }  // namespace softstep

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "softstep/body.hpp"
+#include "softstep/contacts.hpp"
 #include "softstep/errors.hpp"
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"

@@ -17,6 +17,7 @@ namespace softstep {
 enum class PlanStage : std::uint8_t {
   PrepareBodies,       // body records from the world (once per step)
   PrepareJoints,       // anchors and softness coefficients (once per step)
+  PrepareContacts,     // the step's contacts: effective masses, approach speeds (once per step)
   Gravity,             // per sub-step: some awake body feels gravity
   Damping,             // per sub-step: some awake body has linear or angular damping
   Forces,              // per sub-step: some awake body has a force or torque applied
@@ -28,6 +29,7 @@ enum class PlanStage : std::uint8_t {
   IntegratePositions,  // per sub-step
   Relax,               // per sub-step: only with rigid rows or limit rows (springs are not relaxed)
   TreeRelax,           // per sub-step: the exact unbiased pass of tree islands
+  Restitution,         // after the sub-steps: only when some contact has restitution
   Store,               // poses and velocities back to the world (once per step)
 };
 inline constexpr int kPlanStageCount = 14;
@@ -74,7 +76,18 @@ struct StepPlan {
   std::vector<PlanKernel> kernels;    // ordered by type, then variant
   std::size_t awake_bodies = 0;       // movable bodies integrated each sub-step
   std::size_t sleeping_islands = 0;
-  std::uint64_t rows_per_pass = 0;  // constraint rows one solve pass runs
+  std::uint64_t rows_per_pass = 0;  // constraint rows one solve pass runs (joints)
+  // The last step's contacts (they come with each step, World::step(dt, contacts)): the
+  // manifolds in lanes, their points, the colours they took and how many found none (solved in
+  // order on one thread), and the rows they brought. Their stages join the plan only while
+  // there are contacts; friction, rolling and restitution only while some contact has them.
+  std::size_t contact_manifolds = 0;
+  std::size_t contact_points = 0;
+  std::size_t contact_colors = 0;
+  std::size_t contact_overflow = 0;
+  bool contact_friction = false;
+  bool contact_rolling = false;
+  bool contact_restitution = false;
   std::uint64_t builds = 0;         // how many times this world has built its plan
 };
 

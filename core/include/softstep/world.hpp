@@ -5,10 +5,12 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "softstep/body.hpp"
+#include "softstep/contacts.hpp"
 #include "softstep/errors.hpp"
 #include "softstep/ids.hpp"
 #include "softstep/joints.hpp"
@@ -161,6 +163,16 @@ class World {
 
   // Advances the world by dt seconds (> 0, finite) in settings().substeps sub-steps.
   void step(double dt);
+  // The same with this step's contacts from the caller's collision detection (contacts.hpp
+  // says why they are an argument, and the conventions). The span is read during the call
+  // only. Every manifold is validated before anything changes (InvalidArgument names the
+  // field, e.g. "contacts[3].normal"). A manifold between a sleeping body and an awake dynamic
+  // one wakes the sleeper; one whose bodies are all static or asleep is not solved and keeps
+  // its impulses for when it wakes.
+  void step(double dt, std::span<const ContactManifold> contacts);
+  // What the last step's contacts applied, in the order they were given (empty after a step
+  // without contacts).
+  const std::vector<ContactReading>& contact_readings() const;
 
   SolverLayout solver_layout() const;
   // What the next step runs: the effects the awake content has, the stages and kernel

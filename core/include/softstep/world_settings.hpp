@@ -3,6 +3,8 @@
 #include <Eigen/Core>
 #include <numbers>
 
+#include "softstep/contacts.hpp"
+
 namespace softstep {
 
 // Lane width of the solver kernels. All widths give bit-identical results.
@@ -98,6 +100,8 @@ struct WorldSettings {
   // kernel and every stage runs, fed neutral values: the baseline the benchmarks compare
   // with. Both give the same results (up to the sign of a zero).
   bool specialize = true;
+  // How the contacts given to step() are solved (contacts.hpp).
+  ContactSettings contact{};
 };
 
 }  // namespace softstep

@@ -1,0 +1,104 @@
+// softstep_contacts: steps a contact scene with Bullet's narrow phase and prints where a step's
+// time goes, the user's collision detection apart from softstep's solve.
+//   softstep_contacts pyramid --base 100 --steps 300 --threads 1 --simd avx2
+//   softstep_contacts pile --count 1000
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "contacts/contact_scenes.hpp"
+
+namespace {
+
+using softstep::SimdWidth;
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Contact scenes with Bullet's narrow phase: collision vs solve time"};
+  std::string scene = "pyramid";
+  int base = 100, count = 1000, steps = 300, threads = 1, substeps = 4;
+  std::string simd = "best";
+  app.add_option("scene", scene, "pyramid or pile")->check(CLI::IsMember({"pyramid", "pile"}));
+  app.add_option("--base", base, "pyramid: boxes in the bottom row")->check(CLI::Range(1, 1000));
+  app.add_option("--count", count, "pile: bodies dropped")->check(CLI::Range(1, 100000));
+  app.add_option("--steps", steps, "steps of 1/60 s")->check(CLI::Range(1, 1000000));
+  app.add_option("--threads", threads, "solver threads (fixed)")->check(CLI::Range(1, 64));
+  app.add_option("--substeps", substeps, "sub-steps per step")->check(CLI::Range(1, 64));
+  app.add_option("--simd", simd, "scalar, sse, avx2 or best")
+      ->check(CLI::IsMember({"scalar", "sse", "avx2", "best"}));
+  CLI11_PARSE(app, argc, argv);
+
+  softstep::WorldSettings s;
+  s.threads = threads;
+  s.fixed_threads = true;
+  s.substeps = substeps;
+  s.sleeping = false;  // measure the solve of every body, every step
+  s.simd = simd == "scalar" ? SimdWidth::Scalar
+           : simd == "sse"  ? SimdWidth::Sse
+           : simd == "avx2" ? SimdWidth::Avx2
+                            : SimdWidth::Best;
+  softstep::bench::ContactScene sc = scene == "pyramid" ? softstep::bench::make_pyramid(base, s)
+                                                        : softstep::bench::make_pile(count, s);
+  softstep::World& world = *sc.world;
+  world.set_profiling(true);
+  std::vector<Eigen::Vector3d> start;
+  for (softstep::BodyId id : sc.dynamic) start.push_back(world.body(id).position);
+
+  std::vector<double> collision_ms, step_ms, load_ms;
+  std::vector<std::array<double, softstep::kStageCount>> stage_ms;
+  std::size_t manifolds = 0, points = 0;
+  for (int i = 0; i < steps; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto& contacts = sc.collision->find(world, sc.friction, sc.restitution);
+    const auto t1 = std::chrono::steady_clock::now();
+    world.step(1.0 / 60.0, contacts);
+    collision_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    const softstep::StepProfile& p = world.last_step_profile();
+    step_ms.push_back(p.step_ms);
+    load_ms.push_back(p.contact_load_ms);
+    stage_ms.push_back(p.stage_ms);
+    manifolds = contacts.size();
+    points = 0;
+    for (const auto& m : contacts) points += static_cast<std::size_t>(m.point_count);
+  }
+  double moved = 0.0;
+  for (std::size_t i = 0; i < sc.dynamic.size(); ++i) {
+    moved = std::max(moved, (world.body(sc.dynamic[i]).position - start[i]).norm());
+  }
+  const softstep::StepPlan& plan = world.step_plan();
+  std::printf("scene            %s: %zu dynamic bodies, %d steps of 1/60 s, %d sub-steps\n",
+              scene.c_str(), sc.dynamic.size(), steps, substeps);
+  std::printf("solver           %s, %d thread(s)\n", softstep::simd_width_name(world.solver_layout().simd),
+              threads);
+  std::printf("contacts (last)  %zu manifolds, %zu points, %zu colours, %zu in overflow\n",
+              manifolds, points, plan.contact_colors, plan.contact_overflow);
+  std::printf("largest move     %.4f m (from the start pose, over the run)\n", moved);
+  std::printf("median ms/step   collision (Bullet, the user's) %.3f | softstep step %.3f\n",
+              median(collision_ms), median(step_ms));
+  std::printf("  softstep parts contact load (match, colour, pack) %.3f\n", median(load_ms));
+  for (int st = 0; st < softstep::kStageCount; ++st) {
+    std::vector<double> v;
+    for (const auto& a : stage_ms) v.push_back(a[static_cast<std::size_t>(st)]);
+    std::printf("  %-22s %.3f\n", softstep::stage_name(static_cast<softstep::Stage>(st)), median(v));
+  }
+  const double rows = double(points) * 3.0;  // normal + 2 friction rows per point
+  const std::size_t passes = std::size_t(substeps) * 2;  // solve + relax
+  std::vector<double> solve_relax;
+  for (const auto& a : stage_ms) {
+    solve_relax.push_back(a[static_cast<std::size_t>(softstep::Stage::Solve)] +
+                          a[static_cast<std::size_t>(softstep::Stage::Relax)]);
+  }
+  std::printf("contact rows     %.0f per pass: %.2f ns per row (solve + relax stages, incl. barriers)\n",
+              rows, median(solve_relax) * 1e6 / (rows * double(passes)));
+  return 0;
+}

@@ -1,0 +1,76 @@
+#include "contacts/contact_validation.hpp"
+
+#include <cmath>
+#include <string>
+#include <unordered_set>
+
+#include "contacts/contact_solver.hpp"
+#include "validation.hpp"
+
+namespace softstep::validation {
+
+namespace {
+
+// The normal must be unit to float precision: the kernels use it as it is.
+constexpr double kUnitTolerance = 1e-4;
+
+std::string bounded(std::string_view rule, double low, double high) {
+  return std::string(rule) + " in [" + format(low) + ", " + format(high) + "]";
+}
+
+void in_range(std::string_view call, const std::string& field, double value, double low,
+              double high) {
+  finite(call, field, value);
+  if (value < low || value > high) reject(call, field, format(value), bounded("must be", low, high));
+}
+
+}  // namespace
+
+void contacts(std::string_view call, const World::Impl& w,
+              std::span<const ContactManifold> manifolds) {
+  std::unordered_set<ContactPairKey, ContactPairHash> seen;
+  seen.reserve(manifolds.size());
+  for (std::size_t i = 0; i < manifolds.size(); ++i) {
+    const ContactManifold& m = manifolds[i];
+    const std::string at = "contacts[" + std::to_string(i) + "]";
+    const std::uint32_t a = body_slot(w, call, at + ".body_a", m.body_a);
+    const std::uint32_t b = body_slot(w, call, at + ".body_b", m.body_b);
+    if (a == b) {
+      reject(call, at + ".body_b", "BodyId{" + std::to_string(b) + "}",
+             "a body cannot touch itself (body_a == body_b)");
+    }
+    finite(call, at + ".normal", m.normal);
+    if (std::abs(m.normal.norm() - 1.0) > kUnitTolerance) {
+      reject(call, at + ".normal", format(m.normal), "must be a unit vector (from A to B)");
+    }
+    if (m.point_count < 1 || m.point_count > kMaxContactPoints) {
+      reject(call, at + ".point_count", std::to_string(m.point_count),
+             "must be in [1, " + std::to_string(kMaxContactPoints) + "]");
+    }
+    in_range(call, at + ".friction", m.friction, 0.0, kMaxMagnitude);
+    in_range(call, at + ".restitution", m.restitution, 0.0, 1.0);
+    in_range(call, at + ".rolling_resistance", m.rolling_resistance, 0.0, kMaxMagnitude);
+    in_range(call, at + ".tangent_speed.x", m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude);
+    in_range(call, at + ".tangent_speed.y", m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude);
+    for (int k = 0; k < m.point_count; ++k) {
+      const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
+      const std::string pt = at + ".points[" + std::to_string(k) + "]";
+      finite(call, pt + ".anchor_a", p.anchor_a);
+      finite(call, pt + ".anchor_b", p.anchor_b);
+      in_range(call, pt + ".separation", p.separation, -kMaxMagnitude, kMaxMagnitude);
+      for (int earlier = 0; earlier < k; ++earlier) {
+        if (m.points[static_cast<std::size_t>(earlier)].feature_id == p.feature_id) {
+          reject(call, pt + ".feature_id", std::to_string(p.feature_id),
+                 "repeats points[" + std::to_string(earlier) +
+                     "]'s: feature ids tell a manifold's points apart");
+        }
+      }
+    }
+    if (!seen.insert(contact_pair_key(m)).second) {
+      reject(call, at + ".key", std::to_string(m.key),
+             "another manifold of this step has the same body pair and key");
+    }
+  }
+}
+
+}  // namespace softstep::validation
