@@ -26,7 +26,12 @@ struct CachedManifold {
   int point_count = 0;
   std::array<std::uint32_t, kMaxContactPoints> feature_id{};
   std::array<double, kMaxContactPoints> normal_impulse{};
-  std::array<Eigen::Vector3d, kMaxContactPoints> friction_impulse{};  // on B, world
+  // on B, world; zeros spelt out: {} leaves an Eigen vector uninitialized (gcc under ASan
+  // rightly warns that moving such a manifold reads them)
+  std::array<Eigen::Vector3d, kMaxContactPoints> friction_impulse{
+      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+      Eigen::Vector3d::Zero()};
+  static_assert(kMaxContactPoints == 4, "one Zero() per point above");
   std::array<double, kMaxContactPoints> max_normal_impulse{};
   Eigen::Vector3d rolling_impulse = Eigen::Vector3d::Zero();  // on B, world
 };
