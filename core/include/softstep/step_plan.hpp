@@ -32,7 +32,8 @@ enum class PlanStage : std::uint8_t {
   Restitution,         // after the sub-steps: only when some contact has restitution
   Store,               // poses and velocities back to the world (once per step)
 };
-inline constexpr int kPlanStageCount = 14;
+// Store is last: the count follows the enum (two branches once each added stages to a literal).
+inline constexpr int kPlanStageCount = static_cast<int>(PlanStage::Store) + 1;
 const char* plan_stage_name(PlanStage stage);  // "prepare_bodies", "gravity", ...
 
 // What the spring row of a kernel variant is: Any is the general kernel (per-lane switches).
