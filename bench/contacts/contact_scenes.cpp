@@ -3,14 +3,6 @@
 namespace softstep::bench {
 namespace {
 
-Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& half) {
-  const Eigen::Vector3d s = 2.0 * half;
-  return Eigen::Vector3d(mass / 12.0 * (s.y() * s.y() + s.z() * s.z()),
-                         mass / 12.0 * (s.x() * s.x() + s.z() * s.z()),
-                         mass / 12.0 * (s.x() * s.x() + s.y() * s.y()))
-      .asDiagonal();
-}
-
 BodyId add_static_box(ContactScene& s, const Eigen::Vector3d& position,
                       const Eigen::Vector3d& half) {
   BodyDef d;
@@ -26,7 +18,7 @@ BodyId add_dynamic_box(ContactScene& s, const Eigen::Vector3d& position, double 
   BodyDef d;
   d.position = position;
   d.mass = mass;
-  d.inertia = box_inertia(mass, half);
+  d.inertia = solid_box_inertia(mass, 2.0 * half);
   const BodyId id = s.world->create_body(d);
   s.collision->add_box(id, half);
   s.dynamic.push_back(id);
@@ -63,8 +55,8 @@ ContactScene make_pile(int count, const WorldSettings& settings) {
   for (int side = 0; side < 4; ++side) {
     const double sx = side < 2 ? (side == 0 ? -size : size) : 0.0;
     const double sz = side >= 2 ? (side == 2 ? -size : size) : 0.0;
-    const Eigen::Vector3d half = side < 2 ? Eigen::Vector3d(0.25, 2.0, size)
-                                          : Eigen::Vector3d(size, 2.0, 0.25);
+    const Eigen::Vector3d half =
+        side < 2 ? Eigen::Vector3d(0.25, 2.0, size) : Eigen::Vector3d(size, 2.0, 0.25);
     add_static_box(s, {sx, 2.0, sz}, half);
   }
   // A lattice of alternating boxes and spheres above the bin, a little jittered by index.

@@ -39,12 +39,6 @@ std::vector<Part> parts() {
   return p;
 }
 
-Eigen::Matrix3d box_inertia(const Part& p) {
-  const Eigen::Vector3d s2 = p.size.cwiseProduct(p.size);
-  return Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
-         (p.mass / 12.0);
-}
-
 // Index of a part in parts(): the four of the trunk, then six per side.
 enum : int { kPelvis, kAbdomen, kChest, kHead };
 int limb(double side, int k) {  // k: 0 upper arm, 1 forearm, 2 hand, 3 thigh, 4 shin, 5 foot
@@ -68,7 +62,7 @@ RagdollScene build_ragdolls(World& world, const RagdollOptions& o) {
       BodyDef d;
       d.position = pelvis + p.centre;
       d.mass = p.mass;
-      d.inertia = box_inertia(p);
+      d.inertia = solid_box_inertia(p.mass, p.size);
       d.linear_damping = o.limb_damping;
       d.angular_damping = o.limb_damping;
       r.bodies.push_back(world.create_body(d));
@@ -109,8 +103,8 @@ RagdollScene build_ragdolls(World& world, const RagdollOptions& o) {
       // Hip, twist axis down the leg; reference x: half_x sideways, half_y forwards/back.
       swing_twist(kPelvis, limb(side, 3), {side * 0.10, -0.10, 0.0}, -up, 0.60, 1.20, 0.50);
       // Knee: the shin bends backwards (-z) by a positive angle, 0 to 140 degrees; ankle.
-      hinge(limb(side, 3), limb(side, 4), {side * 0.10, -0.50, 0.0}, Eigen::Vector3d::UnitX(),
-            0.0, 2.44);
+      hinge(limb(side, 3), limb(side, 4), {side * 0.10, -0.50, 0.0}, Eigen::Vector3d::UnitX(), 0.0,
+            2.44);
       hinge(limb(side, 4), limb(side, 5), {side * 0.10, -0.92, 0.0}, Eigen::Vector3d::UnitX(),
             -0.70, 0.50);
     }

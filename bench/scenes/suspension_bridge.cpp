@@ -43,9 +43,7 @@ BodyId body(World& world, const Eigen::Vector3d& p, double mass, const Eigen::Ve
   BodyDef d;
   d.position = p;
   d.mass = mass;
-  const Eigen::Vector3d s2 = size.cwiseProduct(size);
-  d.inertia = Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
-              (mass / 12.0);
+  d.inertia = solid_box_inertia(mass, size);
   d.linear_damping = damping;
   d.angular_damping = damping;
   return world.create_body(d);
@@ -110,9 +108,8 @@ SuspensionBridgeScene build_suspension_bridge(World& world, const SuspensionBrid
       }
       s.planks.push_back(plank);
       if (k == n / 2) {
-        const BodyId load =
-            body(world, centre - Eigen::Vector3d(0.0, 0.5, 0.0), o.load_mass, {1.0, 0.6, 1.0},
-                 o.damping);
+        const BodyId load = body(world, centre - Eigen::Vector3d(0.0, 0.5, 0.0), o.load_mass,
+                                 {1.0, 0.6, 1.0}, o.damping);
         BallJointDef hook;
         hook.body_a = plank;
         hook.body_b = load;

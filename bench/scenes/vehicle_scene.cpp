@@ -8,12 +8,6 @@ namespace softstep::scenes {
 
 namespace {
 
-Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& size) {
-  const Eigen::Vector3d s2 = size.cwiseProduct(size);
-  return Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
-         (mass / 12.0);
-}
-
 BodyId dynamic(World& world, const Eigen::Vector3d& position, double mass,
                const Eigen::Matrix3d& inertia, const Eigen::Vector3d& velocity,
                const Eigen::Vector3d& spin = Eigen::Vector3d::Zero()) {
@@ -32,7 +26,7 @@ Car build_car(World& world, BodyId ground, const VehicleOptions& o, double z, Ve
   car.start_height = axle_height + 0.3;  // the chassis centre 0.3 m above the axles, unloaded
   const Eigen::Vector3d velocity(o.speed, 0.0, 0.0);
   car.chassis = dynamic(world, {0.0, car.start_height, z}, o.chassis_mass,
-                        box_inertia(o.chassis_mass, {4.2, 0.6, 1.8}), velocity);
+                        solid_box_inertia(o.chassis_mass, {4.2, 0.6, 1.8}), velocity);
   const double r = o.wheel_radius;
   // A disc about its axle z: m r^2 / 2; about a diameter: m r^2 / 4.
   const Eigen::Matrix3d wheel_inertia =
@@ -108,8 +102,8 @@ Bounce measure_bounce(const std::vector<double>& samples, double rest, double dt
   const double delta = std::log(peaks[0] / peaks[1]);
   out.damping_ratio = delta / std::sqrt(4.0 * std::numbers::pi * std::numbers::pi + delta * delta);
   const double damped = 2.0 * std::numbers::pi / period;
-  out.hertz = damped / std::sqrt(1.0 - out.damping_ratio * out.damping_ratio) /
-              (2.0 * std::numbers::pi);
+  out.hertz =
+      damped / std::sqrt(1.0 - out.damping_ratio * out.damping_ratio) / (2.0 * std::numbers::pi);
   return out;
 }
 

@@ -46,7 +46,8 @@ inline ContactManifold box_on_ground(const World& world, BodyId ground, BodyId b
     const Eigen::Vector3d p = b.position + b.orientation * corners[static_cast<std::size_t>(i)];
     ContactPoint& cp = m.points[static_cast<std::size_t>(k)];
     cp.anchor_b = corners[static_cast<std::size_t>(i)];
-    cp.anchor_a = g.orientation.inverse() * (Eigen::Vector3d(p.x(), ground_top, p.z()) - g.position);
+    cp.anchor_a =
+        g.orientation.inverse() * (Eigen::Vector3d(p.x(), ground_top, p.z()) - g.position);
     cp.separation = p.y() - ground_top;
     cp.feature_id = static_cast<std::uint32_t>(i);
   }
@@ -70,7 +71,8 @@ inline ContactManifold box_on_box(const World& world, BodyId lower, BodyId upper
   int k = 0;
   for (int i = 0; i < 8; ++i) {
     if (i & 2) continue;  // bottom corners only
-    const Eigen::Vector3d world_corner = b.position + b.orientation * corners[static_cast<std::size_t>(i)];
+    const Eigen::Vector3d world_corner =
+        b.position + b.orientation * corners[static_cast<std::size_t>(i)];
     const Eigen::Vector3d in_a = a.orientation.inverse() * (world_corner - a.position);
     ContactPoint& cp = m.points[static_cast<std::size_t>(k++)];
     cp.anchor_b = corners[static_cast<std::size_t>(i)];
@@ -98,20 +100,12 @@ inline ContactManifold sphere_on_ground(const World& world, BodyId ground, BodyI
   return m;
 }
 
-inline Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& half) {
-  const Eigen::Vector3d s = 2.0 * half;
-  return Eigen::Vector3d(mass / 12.0 * (s.y() * s.y() + s.z() * s.z()),
-                         mass / 12.0 * (s.x() * s.x() + s.z() * s.z()),
-                         mass / 12.0 * (s.x() * s.x() + s.y() * s.y()))
-      .asDiagonal();
-}
-
 inline BodyId add_box(World& world, const Eigen::Vector3d& position, double mass,
                       const Eigen::Vector3d& half) {
   BodyDef d;
   d.position = position;
   d.mass = mass;
-  d.inertia = box_inertia(mass, half);
+  d.inertia = solid_box_inertia(mass, 2.0 * half);
   return world.create_body(d);
 }
 

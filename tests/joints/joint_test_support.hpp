@@ -14,13 +14,6 @@ namespace softstep::test {
 
 constexpr double kDt = 1.0 / 60.0;
 
-// Inertia of a solid box of full side lengths (x, y, z), kg m^2, body frame.
-inline Eigen::Matrix3d box_inertia(double mass, const Eigen::Vector3d& size) {
-  const Eigen::Vector3d s2 = size.cwiseProduct(size);
-  return Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
-         (mass / 12.0);
-}
-
 // The same inertia turned by `rotation` in the body frame: products of inertia, so the
 // body's principal axes are not the joint's (a body hinged off its principal axes needs the
 // joint's off-axis torques to keep turning about the hinge).
@@ -68,7 +61,8 @@ inline std::vector<double> upward_crossings(const std::function<void()>& advance
   for (int i = 1; i <= steps; ++i) {
     advance();
     const double now = sample();
-    if (previous < 0.0 && now >= 0.0) crossings.push_back((i - 1 + previous / (previous - now)) * dt);
+    if (previous < 0.0 && now >= 0.0)
+      crossings.push_back((i - 1 + previous / (previous - now)) * dt);
     previous = now;
   }
   return crossings;

@@ -32,7 +32,7 @@ std::unique_ptr<Dragged> dragged(const Eigen::Vector3d& target, const Quaternion
   auto d = std::make_unique<Dragged>(Dragged{World(settings), {}, {}, {}, {}});
   d->ground = test::static_body(d->world);
   d->body = test::dynamic_body(d->world, Eigen::Vector3d::Zero(), 2.0,
-                               test::box_inertia(2.0, {0.4, 0.2, 0.3}));
+                               solid_box_inertia(2.0, {0.4, 0.2, 0.3}));
   d->def.body_a = d->ground;
   d->def.body_b = d->body;
   d->def.frame_a.local_anchor = target;
@@ -91,8 +91,8 @@ TEST(MotorJoint, ImpulseNeverExceedsTheCapAndTheBodyArrivesNoSoonerThanItAllows)
 
 // The target moves at run time through set_joint (mouse dragging), and the body follows.
 TEST(MotorJoint, FollowsATargetMovedBySetJoint) {
-  auto d = dragged({0.0, 0.0, 0.0}, Quaternion::Identity(), 1000.0, 1000.0,
-                   Spring::soft(2.0, 1.0), Spring::rigid());
+  auto d = dragged({0.0, 0.0, 0.0}, Quaternion::Identity(), 1000.0, 1000.0, Spring::soft(2.0, 1.0),
+                   Spring::rigid());
   d->def.frame_a.local_anchor = {0.0, 0.5, 0.0};
   d->world.set_joint(d->joint, d->def);
   for (int i = 0; i < 120; ++i) d->world.step(kDt);

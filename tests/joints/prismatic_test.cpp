@@ -43,7 +43,7 @@ Slider make_slider(const Eigen::Vector3d& axis, const Eigen::Vector3d& anchor_of
   const Eigen::Matrix3d turn =
       Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   s.body = test::dynamic_body(s.world, {0.0, 1.0, 0.0}, 2.0,
-                              test::turned(test::box_inertia(2.0, {0.4, 0.2, 0.3}), turn));
+                              test::turned(solid_box_inertia(2.0, {0.4, 0.2, 0.3}), turn));
   s.def = scenes::joint_at<PrismaticJointDef>(
       s.world, s.ground, s.body, Eigen::Vector3d(0.0, 1.0, 0.0) + anchor_offset, s.axis);
   s.def.limit = limit;

@@ -28,7 +28,7 @@ Eigen::Matrix3d rod_inertia_off_axis() {
   const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitX()) *
                                 Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()))
                                    .toRotationMatrix();
-  return test::turned(test::box_inertia(2.0, {0.3, 1.0, 0.2}), turn);
+  return test::turned(solid_box_inertia(2.0, {0.3, 1.0, 0.2}), turn);
 }
 
 struct SwingResult {
@@ -212,7 +212,7 @@ TEST(Revolute, ArmFallingOntoItsLimitStopsAtIt) {
   s.sleeping = false;  // the limit impulse is read while the arm rests on the limit
   World world(s);
   const double m = 2.0, d = 0.5;
-  const Eigen::Matrix3d inertia = test::box_inertia(m, {1.0, 0.1, 0.1});
+  const Eigen::Matrix3d inertia = solid_box_inertia(m, {1.0, 0.1, 0.1});
   const BodyId ground = test::static_body(world);
   const BodyId arm = test::dynamic_body(world, {d, 0.0, 0.0}, m, inertia);
   auto j = scenes::joint_at<RevoluteJointDef>(world, ground, arm, Eigen::Vector3d::Zero(),

@@ -22,7 +22,7 @@ constexpr double kG = 9.81;
 TEST(Weld, RigidWeldHoldsACantileverLikeARigidBeam) {
   World world;
   const double m = 2.0, length = 1.0;
-  const Eigen::Matrix3d inertia = test::box_inertia(m, {length, 0.1, 0.1});
+  const Eigen::Matrix3d inertia = solid_box_inertia(m, {length, 0.1, 0.1});
   const BodyId wall = test::static_body(world);
   const BodyId beam = test::dynamic_body(world, {length / 2, 0.0, 0.0}, m, inertia);
   auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(),
@@ -137,7 +137,7 @@ TEST(Weld, SetJointSoftensTheWeldAndWakes) {
   World world;
   const BodyId wall = test::static_body(world);
   const BodyId beam =
-      test::dynamic_body(world, {0.5, 0.0, 0.0}, 2.0, test::box_inertia(2.0, {1.0, 0.1, 0.1}));
+      test::dynamic_body(world, {0.5, 0.0, 0.0}, 2.0, solid_box_inertia(2.0, {1.0, 0.1, 0.1}));
   auto j = scenes::joint_at<WeldJointDef>(world, wall, beam, Eigen::Vector3d::Zero(),
                                           Eigen::Vector3d::UnitZ());
   const JointId id = world.create_joint(j);

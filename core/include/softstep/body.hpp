@@ -41,4 +41,11 @@ inline Eigen::Matrix3d solid_sphere_inertia(double mass, double radius) {
   return Eigen::Matrix3d::Identity() * (0.4 * mass * radius * radius);
 }
 
+// Inertia of a solid box of full side lengths (x, y, z), kg m^2, in the box's frame.
+inline Eigen::Matrix3d solid_box_inertia(double mass, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d s2 = size.cwiseProduct(size);
+  return Eigen::Vector3d(s2.y() + s2.z(), s2.x() + s2.z(), s2.x() + s2.y()).asDiagonal() *
+         (mass / 12.0);
+}
+
 }  // namespace softstep
