@@ -20,6 +20,10 @@ const char* type_name(BodyType t) {
 
 SimdWidth resolve_width(std::string_view call, SimdWidth requested) {
   if (requested == SimdWidth::Best) return best_simd_width();
+  if (!simd_width_built(requested)) {
+    validation::reject(call, "WorldSettings.simd", simd_width_name(requested),
+                       "this build left the width out (CMake option SOFTSTEP_WIDTHS)");
+  }
   if (!simd_width_supported(requested)) {
     validation::reject(call, "WorldSettings.simd", simd_width_name(requested),
                        "this CPU lacks " + simd_width_requirement(requested));

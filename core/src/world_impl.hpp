@@ -160,8 +160,23 @@ std::uint32_t body_slot(const World::Impl& w, std::string_view call, std::string
                         BodyId id);
 std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id);
 
+// Set by core/CMakeLists.txt for each width in SOFTSTEP_WIDTHS: a width left out has no
+// kernels, and the code that picks a width compiles its case out.
+#ifndef SOFTSTEP_HAS_SSE
+#define SOFTSTEP_HAS_SSE 0
+#endif
+#ifndef SOFTSTEP_HAS_AVX2
+#define SOFTSTEP_HAS_AVX2 0
+#endif
+#ifndef SOFTSTEP_HAS_AVX512
+#define SOFTSTEP_HAS_AVX512 0
+#endif
+
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width);
 SimdWidth best_simd_width();
+// Whether this build compiled the width's kernels (SOFTSTEP_WIDTHS).
+bool simd_width_built(SimdWidth width);
+// Built, and this CPU runs it.
 bool simd_width_supported(SimdWidth width);
 // The instruction sets a width needs, as a CPU's documentation names them ("AVX2 and FMA").
 std::string simd_width_requirement(SimdWidth width);

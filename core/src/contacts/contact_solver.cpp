@@ -430,16 +430,23 @@ std::unique_ptr<ContactSolver> make_contact_solver(SimdWidth width) {
     case SimdWidth::Scalar:
       return std::make_unique<ContactSolverImpl<1>>(solver::scalar_contact_kernels(),
                                                     solver::scalar_contact_kernels());
+    // Widths left out of SOFTSTEP_WIDTHS are compiled out (make_lane_solver says why).
+#if SOFTSTEP_HAS_SSE
     case SimdWidth::Sse:
       return std::make_unique<ContactSolverImpl<4>>(solver::sse_contact_kernels(),
                                                     solver::scalar_contact_kernels());
+#endif
+#if SOFTSTEP_HAS_AVX2
     case SimdWidth::Avx2:
       return std::make_unique<ContactSolverImpl<8>>(solver::avx2_contact_kernels(),
                                                     solver::scalar_contact_kernels());
+#endif
+#if SOFTSTEP_HAS_AVX512
     case SimdWidth::Avx512:
       return std::make_unique<ContactSolverImpl<16>>(solver::avx512_contact_kernels(),
                                                      solver::scalar_contact_kernels());
-    case SimdWidth::Best:
+#endif
+    default:
       break;
   }
   throw std::logic_error("make_contact_solver: width must be resolved");

@@ -425,7 +425,23 @@ class LaneSolverImpl final : public LaneSolver {
 
 }  // namespace
 
+bool simd_width_built(SimdWidth width) {
+  switch (width) {
+    case SimdWidth::Best:
+    case SimdWidth::Scalar:
+      return true;
+    case SimdWidth::Sse:
+      return SOFTSTEP_HAS_SSE;
+    case SimdWidth::Avx2:
+      return SOFTSTEP_HAS_AVX2;
+    case SimdWidth::Avx512:
+      return SOFTSTEP_HAS_AVX512;
+  }
+  return false;
+}
+
 bool simd_width_supported(SimdWidth width) {
+  if (!simd_width_built(width)) return false;
   __builtin_cpu_init();
   const bool fma_ok = !SOFTSTEP_USE_FMA || __builtin_cpu_supports("fma");
   switch (width) {
@@ -492,22 +508,30 @@ const char* simd_width_name(SimdWidth width) {
 }
 
 std::unique_ptr<LaneSolver> make_lane_solver(SimdWidth width) {
+  // A width left out of SOFTSTEP_WIDTHS has no kernels to link: its case is compiled out, and
+  // World never asks for it (simd_width_supported).
   switch (width) {
     case SimdWidth::Scalar:
       return std::make_unique<LaneSolverImpl<1>>(
           solver::kernel_table<1>(solver::scalar_body_kernels()));
+#if SOFTSTEP_HAS_SSE
     case SimdWidth::Sse:
       return std::make_unique<LaneSolverImpl<4>>(
           solver::kernel_table<4>(solver::sse_body_kernels()));
+#endif
+#if SOFTSTEP_HAS_AVX2
     case SimdWidth::Avx2:
       return std::make_unique<LaneSolverImpl<8>>(
           solver::kernel_table<8>(solver::avx2_body_kernels()));
+#endif
+#if SOFTSTEP_HAS_AVX512
     case SimdWidth::Avx512:
       // Bodies are integrated in blocks of 8 records (kBodyBlock), which is what the 8-lane
       // body kernels do in one step; the body passes are a small share of a step.
       return std::make_unique<LaneSolverImpl<16>>(
           solver::kernel_table<16>(solver::avx2_body_kernels()));
-    case SimdWidth::Best:
+#endif
+    default:
       break;
   }
   throw std::logic_error("make_lane_solver: width must be resolved");
