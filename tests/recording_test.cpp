@@ -274,7 +274,7 @@ TEST(Recording, CorruptedFilesSayWhatIsWrong) {
   const std::size_t first_record = 20 + scene_size + 8;
   const Case cases[] = {
       {"signature", 0, 'X', "not a softstep recording"},
-      {"version", 8, 3, "version 3"},
+      {"version", 8, 4, "version 4"},
       {"version 0", 8, 0, "version 0"},
       {"scene", 20 + 2, '!', "initial scene"},
       {"unknown tag", first_record, 77, "unknown record tag 77"},

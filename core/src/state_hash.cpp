@@ -8,6 +8,31 @@
 
 namespace softstep {
 
+namespace {
+
+// The contacts' warm-start impulses, in the order of their keys (the map's own order depends on
+// its history). Nothing while the cache is empty, so worlds without contacts hash as before.
+void hash_contact_cache(StateHasher& h, const ContactCache& cache) {
+  for (const auto* entry : sorted_entries(cache)) {
+    const ContactPairKey& k = entry->first;
+    const CachedManifold& c = entry->second;
+    h.value(k.low);
+    h.value(k.high);
+    h.value(k.key);
+    h.value(c.body_a);
+    h.value(c.point_count);
+    for (std::size_t p = 0; p < static_cast<std::size_t>(c.point_count); ++p) {
+      h.value(c.feature_id[p]);
+      h.value(c.normal_impulse[p]);
+      h.matrix(c.friction_impulse[p]);
+      h.value(c.max_normal_impulse[p]);
+    }
+    h.matrix(c.rolling_impulse);
+  }
+}
+
+}  // namespace
+
 std::uint64_t World::state_hash() const {
   const Impl& w = *impl_;
   StateHasher h;
@@ -29,6 +54,12 @@ std::uint64_t World::state_hash() const {
   h.value(s.time_to_sleep);
   // Only when not the default, so that the golden hashes of iterative worlds still hold.
   if (s.solver != SolverMode::Iterative) h.value(s.solver);
+  if (s.contact != ContactSettings{}) {
+    h.value(s.contact.hertz);
+    h.value(s.contact.damping_ratio);
+    h.value(s.contact.max_push_out_speed);
+    h.value(s.contact.restitution_threshold);
+  }
   // Not hashed: simd, threads and specialize, which by design never change a result, so that runs
   // at different widths and thread counts can be compared by hash.
   h.value(w.bodies.size());
@@ -72,6 +103,7 @@ std::uint64_t World::state_hash() const {
   }
   for (std::uint32_t f : w.free_bodies) h.value(f);
   for (std::uint32_t f : w.free_joints) h.value(f);
+  hash_contact_cache(h, w.contact_cache);
   return h.get();
 }
 

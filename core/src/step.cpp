@@ -463,7 +463,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   w.joints_without_history = false;
   w.clear_forces();
   w.update_sleep(dt);
-  if (w.recorder) w.recorder->step(dt, motion_hash());
+  if (w.recorder) w.recorder->step(dt, contacts, motion_hash());
 }
 
 void World::set_task_callbacks(const TaskCallbacks& callbacks) {

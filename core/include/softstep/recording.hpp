@@ -24,6 +24,8 @@ struct ReplayReport {
   long steps = 0;                // steps replayed, each matching its recorded motion hash
   long calls = 0;                // other calls replayed
   std::uint64_t state_hash = 0;  // World::state_hash() at the end, equal to the recorded one
+  long contact_steps = 0;        // of the steps, those given contacts (step(dt, contacts))
+  long contact_manifolds = 0;    // manifolds given to those steps, all steps together
 };
 
 // What a caller may do around a replay without changing it.

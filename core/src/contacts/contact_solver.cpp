@@ -6,6 +6,7 @@
 #include <bit>
 #include <chrono>
 #include <stdexcept>
+#include <tuple>
 
 #include "contacts/contact_kernels.hpp"
 #include "solver/team.hpp"
@@ -28,6 +29,17 @@ ContactPairKey contact_pair_key(const ContactManifold& m) {
   };
   const std::uint64_t a = word(m.body_a), b = word(m.body_b);
   return {std::min(a, b), std::max(a, b), m.key};
+}
+
+std::vector<const ContactCache::value_type*> sorted_entries(const ContactCache& cache) {
+  std::vector<const ContactCache::value_type*> entries;
+  entries.reserve(cache.size());
+  for (const auto& entry : cache) entries.push_back(&entry);
+  std::sort(entries.begin(), entries.end(), [](const auto* x, const auto* y) {
+    const ContactPairKey &a = x->first, &b = y->first;
+    return std::tie(a.low, a.high, a.key) < std::tie(b.low, b.high, b.key);
+  });
+  return entries;
 }
 
 std::array<Eigen::Vector3d, 2> tangent_directions(const Eigen::Vector3d& normal) {

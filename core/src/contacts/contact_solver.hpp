@@ -47,6 +47,9 @@ struct ContactPairHash {
 using ContactCache = std::unordered_map<ContactPairKey, CachedManifold, ContactPairHash>;
 
 ContactPairKey contact_pair_key(const ContactManifold& m);
+// The cache's entries in the order of their keys (body pair, then key): the map's own order
+// depends on its history, and the state hash and scene files need one that does not.
+std::vector<const ContactCache::value_type*> sorted_entries(const ContactCache& cache);
 
 // How the step's contacts were laid out (for the plan and the profile).
 struct ContactLayout {

@@ -1,9 +1,10 @@
-// The recording file format, version 1 (little-endian throughout):
+// The recording file format, version 3 (little-endian throughout):
 //
 //   header   "SSTEPREC" (8 bytes), u32 version,
 //            u64 length + the initial world as a scene file (JSON, scene_save.cpp),
 //            u64 World::state_hash() of that world
-//   records  u8 tag + payload, in call order (Tag below); a step is f64 dt + u64 motion hash
+//   records  u8 tag + payload, in call order (Tag below); a step is f64 dt + u64 motion hash,
+//            a step with contacts also holds the manifolds given to it (contact_records.hpp)
 //   end      u8 kEnd + u64 World::state_hash() at stop_recording
 //
 // Bodies and joints are named by their ids (u32 slot, u32 generation): the replayed world was
@@ -20,13 +21,15 @@
 namespace softstep::recording {
 
 inline constexpr char kMagic[8] = {'S', 'S', 'T', 'E', 'P', 'R', 'E', 'C'};
-// Version 2 added the records ApplyForce, ApplyTorque and SetJoint: a reader of version 1
-// refuses such a file by its version instead of at the first unknown tag. Version 1 files
-// (without those records) still replay.
-inline constexpr std::uint32_t kVersion = 2;
+// Version 2 added the records ApplyForce, ApplyTorque and SetJoint, version 3 ContactStep and,
+// in the initial scene, the contact settings and the contacts' warm-start cache: an older
+// reader refuses such a file by its version instead of at the first unknown tag. Files of
+// versions 1 and 2 still replay.
+inline constexpr std::uint32_t kVersion = 3;
 inline constexpr std::uint32_t kOldestVersion = 1;
-// The first record each version knows beyond version 1's.
+// The first record tag of versions 2 and 3 (a tag is known from the version it came with on).
 inline constexpr std::uint8_t kFirstVersion2Tag = 13;
+inline constexpr std::uint8_t kFirstVersion3Tag = 16;
 
 enum class Tag : std::uint8_t {
   Step = 1,                // f64 dt, u64 motion hash after the step
@@ -44,6 +47,7 @@ enum class Tag : std::uint8_t {
   ApplyForce = 13,         // id, 3 f64 force, 3 f64 world point
   ApplyTorque = 14,        // id, 3 f64 torque
   SetJoint = 15,           // id, then u32 length + the joint's JSON after the change
+  ContactStep = 16,        // f64 dt, the manifolds (contact_records.hpp), u64 motion hash
   End = 255,               // u64 state hash
 };
 

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "contact_records.hpp"
 #include "scene/body_format.hpp"
 #include "scene/joint_formats.hpp"
 #include "scene/settings_format.hpp"
@@ -46,9 +47,11 @@ void Recorder::id_record(Tag tag, std::uint32_t index, std::uint32_t generation)
   flush_if_full();
 }
 
-void Recorder::step(double dt, std::uint64_t motion_hash) {
-  buffer_.put(Tag::Step);
+void Recorder::step(double dt, std::span<const ContactManifold> contacts,
+                    std::uint64_t motion_hash) {
+  buffer_.put(contacts.empty() ? Tag::Step : Tag::ContactStep);
   buffer_.put(dt);
+  if (!contacts.empty()) write_contacts(buffer_, contacts);
   buffer_.put(motion_hash);
   flush_if_full();
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <fstream>
+#include <span>
 #include <string>
 
 #include "format.hpp"
@@ -17,7 +18,8 @@ class Recorder {
   Recorder(const std::string& path, const World& world);
   ~Recorder();  // flushes (a file without its end record replays up to where it stops)
 
-  void step(double dt, std::uint64_t motion_hash);
+  // A step without contacts is a Step record, one with contacts a ContactStep holding them.
+  void step(double dt, std::span<const ContactManifold> contacts, std::uint64_t motion_hash);
   void create_body(const BodyDef& def, BodyId id);
   void destroy_body(BodyId id) { id_record(Tag::DestroyBody, id.index, id.generation); }
   void set_vector(Tag tag, BodyId id, const Eigen::Vector3d& v);

@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "byte_reader.hpp"
+#include "contact_records.hpp"
 #include "format.hpp"
 #include "scene/body_format.hpp"
 #include "scene/joint_formats.hpp"
@@ -17,6 +19,7 @@ namespace softstep {
 
 namespace {
 
+using recording::ByteReader;
 using recording::Tag;
 
 std::string hex(std::uint64_t v) {
@@ -24,40 +27,6 @@ std::string hex(std::uint64_t v) {
   std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
   return b;
 }
-
-class ByteReader {
- public:
-  ByteReader(const std::string& bytes, const std::string& name) : bytes_(bytes), name_(name) {}
-
-  template <class T>
-  T get(const char* what) {
-    need(sizeof(T), what);
-    T v;
-    std::memcpy(&v, bytes_.data() + at_, sizeof(T));
-    at_ += sizeof(T);
-    return v;
-  }
-  std::string text(std::size_t size, const char* what) {
-    need(size, what);
-    std::string t = bytes_.substr(at_, size);
-    at_ += size;
-    return t;
-  }
-  std::string text(const char* what) { return text(get<std::uint32_t>(what), what); }
-  bool at_end() const { return at_ == bytes_.size(); }
-  std::size_t offset() const { return at_; }
-
- private:
-  void need(std::size_t size, const char* what) const {
-    if (size > bytes_.size() - at_)
-      throw RecordingError(name_ + ": truncated at byte " + std::to_string(at_) + " (reading " +
-                           what + ": " + std::to_string(size) + " bytes, " +
-                           std::to_string(bytes_.size() - at_) + " left)");
-  }
-  const std::string& bytes_;
-  const std::string& name_;
-  std::size_t at_ = 0;
-};
 
 class Replayer {
  public:
@@ -74,10 +43,9 @@ class Replayer {
       record_at_ = in_.offset();
       const auto tag = static_cast<Tag>(in_.get<std::uint8_t>("a record's tag"));
       if (tag == Tag::End) break;
-      if (version_ < 2 && tag != Tag::End &&
-          static_cast<std::uint8_t>(tag) >= recording::kFirstVersion2Tag)
+      if (tag != Tag::End && version_of(tag) > version_)
         fail("record tag " + std::to_string(static_cast<int>(tag)) +
-             " does not exist in a recording of version 1");
+             " does not exist in a recording of version " + std::to_string(version_));
       try {
         record(tag);
       } catch (const SceneFileError& e) {
@@ -99,6 +67,31 @@ class Replayer {
   [[noreturn]] void fail(const std::string& why) const {
     throw RecordingError(name_ + ": record at byte " + std::to_string(record_at_) +
                          " (after step " + std::to_string(report_.steps) + "): " + why);
+  }
+
+  // The version a record tag came with.
+  static std::uint32_t version_of(Tag tag) {
+    const auto t = static_cast<std::uint8_t>(tag);
+    return t >= recording::kFirstVersion3Tag   ? 3
+           : t >= recording::kFirstVersion2Tag ? 2
+                                               : 1;
+  }
+
+  // Replays one step and checks its motion hash against the recorded one.
+  void step(double dt, std::span<const ContactManifold> contacts) {
+    const auto recorded = in_.get<std::uint64_t>("a step's motion hash");
+    world_.step(dt, contacts);
+    ++report_.steps;
+    const std::uint64_t now = world_.motion_hash();
+    if (now != recorded)
+      throw RecordingError(name_ + ": step " + std::to_string(report_.steps) +
+                           " diverged: motion hash " + hex(now) + ", the recording has " +
+                           hex(recorded) + " (record at byte " + std::to_string(record_at_) +
+                           (contacts.empty() ? ""
+                                             : ", a step with " + std::to_string(contacts.size()) +
+                                                   " contact manifolds") +
+                           ")");
+    if (hooks_.after_step) hooks_.after_step(world_, report_.steps, dt);
   }
 
   void header() {
@@ -175,18 +168,17 @@ class Replayer {
 
   void record(Tag tag) {
     switch (tag) {
-      case Tag::Step: {
+      case Tag::Step:
+        step(in_.get<double>("a step's dt"), {});
+        return;
+      case Tag::ContactStep: {
         const auto dt = in_.get<double>("a step's dt");
-        const auto recorded = in_.get<std::uint64_t>("a step's motion hash");
-        world_.step(dt);
-        ++report_.steps;
-        const std::uint64_t now = world_.motion_hash();
-        if (now != recorded)
-          throw RecordingError(name_ + ": step " + std::to_string(report_.steps) +
-                               " diverged: motion hash " + hex(now) + ", the recording has " +
-                               hex(recorded) + " (record at byte " + std::to_string(record_at_) +
-                               ")");
-        if (hooks_.after_step) hooks_.after_step(world_, report_.steps, dt);
+        recording::read_contacts(in_, contacts_, [&](const std::string& why) {
+          fail("step " + std::to_string(report_.steps + 1) + ": " + why);
+        });
+        step(dt, contacts_);
+        ++report_.contact_steps;
+        report_.contact_manifolds += static_cast<long>(contacts_.size());
         return;
       }
       case Tag::CreateBody: {
@@ -291,6 +283,7 @@ class Replayer {
   std::uint32_t version_ = 0;
   World world_;
   std::vector<BodyId> by_slot_;
+  std::vector<ContactManifold> contacts_;  // of the step being replayed (storage kept)
   ReplayReport report_;
   std::size_t record_at_ = 0;
 };

@@ -79,7 +79,7 @@ World load_scene_text(const std::string& json_text, const std::string& name) {
   const scene::json& solver_state = top.object("solver_state");
   top.no_other_keys();
   for (std::size_t i = 0; i < ids.size(); ++i) scene::apply_sleep_time(world, ids[i], sleep_times[i]);
-  scene::read_world_state(source, solver_state, world);
+  scene::read_world_state(source, solver_state, ids, world);
   return world;
 }
 

@@ -47,7 +47,7 @@ std::string save_scene_text(const World& world) {
 
   std::string out = "{\n  \"softstep_scene\": 1,\n  \"settings\": " +
                     scene::settings_json(world.settings()).dump() + ",\n";
-  const std::string state = scene::world_state_text(world);
+  const std::string state = scene::world_state_text(world, index);
   if (!state.empty()) out += "  \"solver_state\": " + state + ",\n";
   append_list(out, "bodies", body_lines, false);
   append_list(out, "joints", joint_lines, true);

@@ -29,6 +29,18 @@ constexpr Field<double> kNumbers[] = {
     {"sleep_linear_speed", &WorldSettings::sleep_linear_speed},
     {"sleep_angular_speed", &WorldSettings::sleep_angular_speed},
     {"time_to_sleep", &WorldSettings::time_to_sleep},
+    {"max_rotation_per_substep", &WorldSettings::max_rotation_per_substep},
+};
+
+// The "contact" object: how the contacts given to step() are solved.
+constexpr struct {
+  const char* key;
+  double ContactSettings::*member;
+} kContactNumbers[] = {
+    {"hertz", &ContactSettings::hertz},
+    {"damping_ratio", &ContactSettings::damping_ratio},
+    {"max_push_out_speed", &ContactSettings::max_push_out_speed},
+    {"restitution_threshold", &ContactSettings::restitution_threshold},
 };
 
 constexpr Field<bool> kSwitches[] = {
@@ -49,6 +61,10 @@ WorldSettings read_settings(ObjectReader& fields) {
   for (const auto& f : kInts) s.*f.member = fields.integer(f.key, s.*f.member);
   for (const auto& f : kNumbers) s.*f.member = fields.number(f.key, s.*f.member);
   for (const auto& f : kSwitches) s.*f.member = fields.boolean(f.key, s.*f.member);
+  ObjectReader contact(fields.source(), fields.object("contact"), fields.path_of("contact"));
+  for (const auto& f : kContactNumbers)
+    s.contact.*f.member = contact.number(f.key, s.contact.*f.member);
+  contact.no_other_keys();
   const std::string simd = fields.text("simd", simd_width_name(s.simd));
   bool known = false;
   for (SimdWidth w : kWidths) {
@@ -81,6 +97,7 @@ nlohmann::json settings_json(const WorldSettings& s) {
   for (const auto& f : kInts) j[f.key] = s.*f.member;
   for (const auto& f : kNumbers) j[f.key] = s.*f.member;
   for (const auto& f : kSwitches) j[f.key] = s.*f.member;
+  for (const auto& f : kContactNumbers) j["contact"][f.key] = s.contact.*f.member;
   j["simd"] = simd_width_name(s.simd);
   j["solver"] = solver_mode_name(s.solver);
   return j;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "contact_cache_format.hpp"
 #include "joints/joint_registry.hpp"
 #include "world_impl.hpp"
 
@@ -15,20 +16,24 @@ int impulses_of(JointType type) {
 
 }  // namespace
 
-std::string world_state_text(const World& world) {
+std::string world_state_text(const World& world, const BodyIndex& index) {
   const World::Impl& w = WorldInternals::of(world);
   if (w.last_substep == 0.0) return {};
-  return json{{"last_substep", w.last_substep},
-              {"joints_without_history", w.joints_without_history}}
-      .dump();
+  json state = {{"last_substep", w.last_substep},
+                {"joints_without_history", w.joints_without_history}};
+  json contacts = contact_cache_json(world, index);
+  if (!contacts.empty()) state["contact_cache"] = std::move(contacts);
+  return state.dump();
 }
 
-void read_world_state(const Source& source, const json& solver_state, World& world) {
+void read_world_state(const Source& source, const json& solver_state,
+                      const std::vector<BodyId>& bodies, World& world) {
   ObjectReader fields(source, solver_state, "/solver_state");
   const double h = fields.number("last_substep", 0.0);
   if (!(std::isfinite(h) && h >= 0.0))
     fail(source, fields.path_of("last_substep"), "expected a finite time >= 0 (s)");
   const bool fresh_joints = fields.boolean("joints_without_history", true);
+  read_contact_cache(source, fields, bodies, world);
   fields.no_other_keys();
   if (h == 0.0) return;
   World::Impl& w = WorldInternals::of(world);

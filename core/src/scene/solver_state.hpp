@@ -6,16 +6,19 @@
 // destroyed bodies and joints.
 #pragma once
 
+#include "joint_formats.hpp"
 #include "json_reader.hpp"
 #include "softstep/world.hpp"
 
 namespace softstep::scene {
 
 // The top-level "solver_state": the last step's sub-step (s) and whether joints were created
-// since, which the geometric inertia of the next step depends on. Absent before a first step.
-// The reader applies it after every body and joint is created.
-std::string world_state_text(const World& world);  // "" when there is nothing to keep
-void read_world_state(const Source& source, const json& solver_state, World& world);
+// since, which the geometric inertia of the next step depends on, and the contacts' warm-start
+// cache (contact_cache_format.hpp). Absent before a first step. The reader applies it after
+// every body and joint is created.
+std::string world_state_text(const World& world, const BodyIndex& index);  // "": nothing to keep
+void read_world_state(const Source& source, const json& solver_state,
+                      const std::vector<BodyId>& bodies, World& world);
 
 void write_joint_state(const World& world, JointId id, json& joint);
 void write_body_state(const World& world, BodyId id, json& body);
