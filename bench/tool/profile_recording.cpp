@@ -47,6 +47,8 @@ int profile_recording(const ProfileOptions& o) {
   SolverLayout layout{};
   std::size_t bodies = 0, joints = 0;
   int threads = 1;
+  // Of the steps given contacts: manifolds, points and softstep's share of taking them.
+  std::vector<double> manifolds, points, contact_load_ms;
   ReplayHooks hooks;
   hooks.on_start = [&](World& world) {
     WorldSettings s = world.settings();
@@ -66,6 +68,11 @@ int profile_recording(const ProfileOptions& o) {
     bodies = world.body_count();
     joints = world.joint_count();
     threads = p.threads;
+    if (plan.contact_manifolds > 0) {
+      manifolds.push_back(double(plan.contact_manifolds));
+      points.push_back(double(plan.contact_points));
+      contact_load_ms.push_back(p.contact_load_ms);
+    }
   };
   ReplayReport report;
   try {
@@ -91,7 +98,20 @@ int profile_recording(const ProfileOptions& o) {
     std::printf("\n");
     print_plan(plan);
   }
+  if (report.contact_steps > 0) {
+    // The contacts run inside the solve, relax and restitution stages; taking them (matching
+    // with the last step's, colouring, packing) is the load below, part of the step's time.
+    std::printf("contacts         %ld of the steps: median %.0f manifolds, %.0f points; last step "
+                "%zu colours, %zu in overflow\n",
+                report.contact_steps, median(manifolds), median(points), plan.contact_colors,
+                plan.contact_overflow);
+  }
   print_stage_table(stage_median, ms);
+  if (report.contact_steps > 0)
+    std::printf("  %-22s %8.3f  %5.1f %%  (matching, colouring, packing; median of the contact "
+                "steps)\n",
+                "contact load", median(contact_load_ms),
+                ms > 0 ? 100.0 * median(contact_load_ms) / ms : 0.0);
   std::printf("  %-22s %8.3f  (median of %ld steps; the slowest %.3f)\n\n", "step", ms,
               report.steps, *std::max_element(samples.step_ms.begin(), samples.step_ms.end()));
   std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(samples.wait_share));
@@ -111,6 +131,12 @@ int profile_recording(const ProfileOptions& o) {
                               {"ms_per_step", ms},
                               {"stage_ms", stage_json(stage_median)},
                               {"barrier_wait_share", median(samples.wait_share)},
+                              {"contacts",
+                               {{"steps", report.contact_steps},
+                                {"manifolds", report.contact_manifolds},
+                                {"median_manifolds", median(manifolds)},
+                                {"median_points", median(points)},
+                                {"median_load_ms", median(contact_load_ms)}}},
                               {"plan", plan_json(plan)},
                               {"state_hash", hash}};
     write_file(o.json_path, j.dump(2) + "\n");

@@ -26,6 +26,9 @@ int replay_command(const ReplayOptions& o) {
     std::printf(
         "%s: %ld steps and %ld other calls replayed, every step matched; state hash %016llx\n",
         o.path.c_str(), r.steps, r.calls, static_cast<unsigned long long>(r.state_hash));
+    if (r.contact_steps > 0)
+      std::printf("contacts: %ld of the steps were given contacts, %ld manifolds in all\n",
+                  r.contact_steps, r.contact_manifolds);
     return 0;
   } catch (const RecordingError& e) {
     std::fprintf(stderr, "softstep replay: %s\n", e.what());
