@@ -7,11 +7,13 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "contacts/contact_scenes.hpp"
+#include "softstep/scene_file.hpp"
 
 namespace {
 
@@ -30,7 +32,7 @@ int main(int argc, char** argv) {
   std::string scene = "pyramid";
   int base = 100, count = 1000, steps = 300, threads = 1, substeps = 4;
   std::string simd = "best";
-  std::string record_path;
+  std::string record_path, overhead_path;
   app.add_option("scene", scene, "pyramid or pile")->check(CLI::IsMember({"pyramid", "pile"}));
   app.add_option("--base", base, "pyramid: boxes in the bottom row")->check(CLI::Range(1, 1000));
   app.add_option("--count", count, "pile: bodies dropped")->check(CLI::Range(1, 100000));
@@ -42,6 +44,11 @@ int main(int argc, char** argv) {
   app.add_option("--record", record_path,
                  "write a recording of the run (World::start_recording): every step's contacts "
                  "included, for softstep replay and softstep profile");
+  app.add_option("--recording-overhead", overhead_path,
+                 "measure what recording costs: a twin of the world (loaded from its scene) "
+                 "records to this file while the world does not; both take the same contacts "
+                 "each step, stepped alternately, and the step() calls' medians are compared")
+      ->excludes("--record");
   CLI11_PARSE(app, argc, argv);
 
   softstep::WorldSettings s;
@@ -61,6 +68,15 @@ int main(int argc, char** argv) {
   for (softstep::BodyId id : sc.dynamic) start.push_back(world.body(id).position);
 
   if (!record_path.empty()) world.start_recording(record_path);
+  // The twin stays bit-identical to the world (same start, same contacts: the design's
+  // determinism), so the contacts found for the world are the twin's too.
+  std::optional<softstep::World> twin;
+  std::vector<double> twin_wall_ms;
+  if (!overhead_path.empty()) {
+    twin.emplace(softstep::load_scene_text(softstep::save_scene_text(world), "twin"));
+    twin->set_profiling(true);
+    twin->start_recording(overhead_path);
+  }
 
   std::vector<double> collision_ms, step_ms, wall_ms, load_ms;
   std::vector<std::array<double, softstep::kStageCount>> stage_ms;
@@ -69,9 +85,16 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     const auto& contacts = sc.collision->find(world, sc.friction, sc.restitution);
     const auto t1 = std::chrono::steady_clock::now();
-    world.step(1.0 / 60.0, contacts);
-    const auto t2 = std::chrono::steady_clock::now();
-    wall_ms.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
+    const auto timed_step = [&](softstep::World& w) {
+      const auto a = std::chrono::steady_clock::now();
+      w.step(1.0 / 60.0, contacts);
+      return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a)
+          .count();
+    };
+    // Alternating which goes first, so neither always finds the other's data in the cache.
+    if (twin && i % 2 == 1) twin_wall_ms.push_back(timed_step(*twin));
+    wall_ms.push_back(timed_step(world));
+    if (twin && i % 2 == 0) twin_wall_ms.push_back(timed_step(*twin));
     collision_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     const softstep::StepProfile& p = world.last_step_profile();
     step_ms.push_back(p.step_ms);
@@ -82,6 +105,13 @@ int main(int argc, char** argv) {
     for (const auto& m : contacts) points += static_cast<std::size_t>(m.point_count);
   }
   if (!record_path.empty()) world.stop_recording();
+  if (twin) {
+    twin->stop_recording();
+    if (twin->state_hash() != world.state_hash()) {
+      std::fprintf(stderr, "the recording twin diverged from the world\n");
+      return 1;
+    }
+  }
   double moved = 0.0;
   for (std::size_t i = 0; i < sc.dynamic.size(); ++i) {
     moved = std::max(moved, (world.body(sc.dynamic[i]).position - start[i]).norm());
@@ -100,6 +130,13 @@ int main(int argc, char** argv) {
   // The call as the caller sees it: the step plus, with --record, writing its contacts.
   std::printf("  step() call    %.3f (wall, around world.step%s)\n", median(wall_ms),
               record_path.empty() ? "" : ", recording included");
+  if (twin) {
+    std::vector<double> ratio;
+    for (std::size_t k = 0; k < wall_ms.size(); ++k) ratio.push_back(twin_wall_ms[k] / wall_ms[k]);
+    std::printf("  recording      %.3f ms/step recording vs %.3f plain (step() calls, alternated); "
+                "median per-step ratio %.3f\n",
+                median(twin_wall_ms), median(wall_ms), median(ratio));
+  }
   for (int st = 0; st < softstep::kStageCount; ++st) {
     std::vector<double> v;
     for (const auto& a : stage_ms) v.push_back(a[static_cast<std::size_t>(st)]);
