@@ -231,5 +231,28 @@ TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
   EXPECT_NE(cut_profile.err.find("cut.rec"), std::string::npos) << cut_profile.err;
 }
 
+// A recording with contacts (the fuzzer's seed: softstep_contacts pyramid --base 2 --steps 3
+// --record): replay counts its contacts, profile shows the contacts line and the contact load.
+TEST(ToolCli, ContactRecordingsReplayAndProfileWithTheirContacts) {
+  const std::string rec =
+      std::string(SOFTSTEP_SOURCE_DIR) + "/tests/fuzz/recording_corpus/seed_v3_contacts";
+  const std::string dir = scratch_dir("contact_record");
+  const ToolRun replay = run_tool("replay " + rec);
+  EXPECT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_NE(replay.out.find("contacts: 3 of the steps were given contacts, 15 manifolds in all"),
+            std::string::npos)
+      << replay.out;
+  const ToolRun profiled = run_tool("profile " + rec + " --plan --json " + dir + "/rec.json");
+  EXPECT_EQ(profiled.exit_code, 0) << profiled.err;
+  EXPECT_NE(profiled.out.find("contacts         3 of the steps: median 5 manifolds"),
+            std::string::npos)
+      << profiled.out;
+  EXPECT_NE(profiled.out.find("contact load"), std::string::npos) << profiled.out;
+  EXPECT_NE(profiled.out.find("prepare_contacts"), std::string::npos) << profiled.out;
+  const nlohmann::json report = nlohmann::json::parse(read_text(dir + "/rec.json"));
+  EXPECT_EQ(report["contacts"]["steps"], 3);
+  EXPECT_EQ(report["contacts"]["manifolds"], 15);
+}
+
 }  // namespace
 }  // namespace softstep::tool_test
