@@ -11,24 +11,17 @@
 #include <fstream>
 #include <sstream>
 
+#include "recording_files.hpp"
 #include "scenes/chain_scene.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
 namespace {
 
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("softstep_recording_test_" + std::to_string(::getpid()) + "_" + name))
-      .string();
-}
-
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::expect_cut_refused;
+using test::expect_replay_error;
+using test::read_bytes;
+using test::temp_path;
 
 // Records a chain and then every kind of call between steps; returns the final state_hash.
 std::uint64_t record_every_call(const std::string& path, int steps_after) {
@@ -223,14 +216,7 @@ TEST(Recording, AChangedStepFailsReplayAtThatStep) {
     std::memcpy(&dt, &changed[at + 1], sizeof dt);
     dt *= 1.001;
     std::memcpy(&changed[at + 1], &dt, sizeof dt);
-    try {
-      replay_recording_bytes(changed, "changed.rec");
-      ADD_FAILURE() << "replayed";
-    } catch (const RecordingError& e) {
-      EXPECT_NE(std::string(e.what()).find("step " + std::to_string(step) + " diverged"),
-                std::string::npos)
-          << e.what();
-    }
+    expect_replay_error(changed, "changed.rec", "step " + std::to_string(step) + " diverged");
   }
   std::filesystem::remove(path);
 }
@@ -239,20 +225,8 @@ TEST(Recording, TruncatedFilesAreRefusedEverywhere) {
   const std::string path = temp_path("truncated");
   record_every_call(path, 3);
   const std::string bytes = read_bytes(path);
-  for (std::size_t size = 0; size < bytes.size(); size += 1 + size / 64) {
-    SCOPED_TRACE(size);
-    try {
-      replay_recording_bytes(bytes.substr(0, size), "cut.rec");
-      ADD_FAILURE() << "replayed";
-    } catch (const RecordingError& e) {
-      const std::string m = e.what();
-      EXPECT_EQ(m.rfind("cut.rec", 0), 0) << m;
-      EXPECT_TRUE(m.find("truncated") != std::string::npos ||
-                  m.find("without its end record") != std::string::npos ||
-                  m.find("not a softstep recording") != std::string::npos)
-          << m;
-    }
-  }
+  for (std::size_t size = 0; size < bytes.size(); size += 1 + size / 64)
+    expect_cut_refused(bytes, size);
   std::filesystem::remove(path);
 }
 
@@ -284,12 +258,7 @@ TEST(Recording, CorruptedFilesSayWhatIsWrong) {
     SCOPED_TRACE(c.what);
     std::string changed = bytes;
     changed[c.at] = c.value;
-    try {
-      replay_recording_bytes(changed, "bad.rec");
-      ADD_FAILURE() << "replayed";
-    } catch (const RecordingError& e) {
-      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
-    }
+    expect_replay_error(changed, "bad.rec", c.message);
   }
   std::string extra = bytes + "x";
   EXPECT_THROW(replay_recording_bytes(extra, "long.rec"), RecordingError);
