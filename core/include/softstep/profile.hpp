@@ -18,7 +18,8 @@ enum class Stage : std::uint8_t {
   Store,                // poses and velocities back to the world (once per step)
   Restitution,          // the contacts' bounce pass after the sub-steps (only when asked)
 };
-inline constexpr int kStageCount = 8;
+// Restitution is last: the count follows the enum.
+inline constexpr int kStageCount = static_cast<int>(Stage::Restitution) + 1;
 const char* stage_name(Stage stage);  // "prepare", "integrate_velocities", ...
 
 // One stage run by one thread: [start, end) in microseconds since the step began.
