@@ -85,7 +85,7 @@ SoftCoefficients Spring::coefficients(double effective_mass, double h) const {
   const double gamma = 1.0 / (c + h * k);
   const double beta = h * k / (c + h * k);
   if (is_absolute()) {
-    // a = h (c + h k) K with K = 1/m_eff (talk 2:3:2: mass_scale = 1/(1 + gamma' m_eff)...).
+    // a = h (c + h k) K with K = 1/m_eff (the top of spring.hpp).
     const double a = h * (c + h * k) / effective_mass;
     return {gamma, beta, beta / h, a / (1.0 + a), 1.0 / (1.0 + a)};
   }

@@ -164,8 +164,8 @@ void relative_spring(std::string_view call, std::string_view field, const Spring
   spring(call, field, s);
   if (s.is_absolute()) {
     reject(call, std::string(field) + ".units", "Absolute",
-           "absolute units (N/m, N m/rad) are taken by the revolute, prismatic and wheel "
-           "joints' axis springs; give this spring as hertz and damping_ratio");
+           "absolute units (N/m, N m/rad) are taken by the revolute, prismatic, wheel and "
+           "distance joints' springs; give this spring as hertz and damping_ratio");
   }
 }
 

@@ -72,9 +72,10 @@ struct JointReading {
   //   prismatic, wheel: along the slide (suspension) axis through B's anchor, kg:
   //     1 / (1/m_a + 1/m_b + the two bodies' rotation terms); 1/(1/m_a + 1/m_b) on the
   //     centres' line
-  // +infinity when neither body can move along the row. NaN for the joints without an axis
-  // row (ball, distance, weld, swing-twist, motor joint): their springs are 3-row blocks or
-  // relative to the rows' own masses.
+  //   distance: along the line between the anchors, kg, the same form with each anchor's
+  //     arm (NaN while the anchors coincide: no direction)
+  // +infinity when neither body can move along the row. NaN for the joints whose springs
+  // are 3-row blocks (ball, weld, swing-twist, motor joint): no one row to read.
   double effective_mass = std::numeric_limits<double>::quiet_NaN();
 };
 

@@ -11,10 +11,10 @@
 // behaves differently on a 1 g and a 1 t body, as a real one does: a car's suspension is tuned
 // for the chassis it carries, not for the wheel that dominates the row's effective mass.
 // k = 0 with c > 0 is a pure damper (bias_rate 0, a = h c K); k = c = 0 is a free spring.
-// Which joints take absolute units: the one-axis springs (revolute N m/rad, prismatic N/m,
-// wheel suspension N/m). The others (ball, distance, weld, swing-twist, motor joint) reject
-// them naming the field: their springs are 3-row blocks (or share one row set with the
-// joint's limits) whose conversion is not done yet.
+// Which joints take absolute units: the one-row springs (revolute N m/rad, prismatic N/m,
+// wheel suspension N/m, distance joint N/m). The others (ball, weld, swing-twist, motor
+// joint) reject them naming the field (".units"): their springs are 3-row blocks with a
+// 3x3 K, whose conversion is not done.
 #pragma once
 
 #include <limits>

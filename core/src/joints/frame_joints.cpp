@@ -150,20 +150,6 @@ double read_axis_controls(const float* impulse, JointReading& r) {
   return r.limit_impulse + r.motor_impulse + r.spring_impulse;
 }
 
-namespace {
-// A relative spring hashes as it always did (the golden hashes stay); an absolute one adds its
-// units and k, c.
-void hash_spring(StateHasher& h, const Spring& s) {
-  h.value(s.hertz);
-  h.value(s.damping_ratio);
-  if (s.is_absolute()) {
-    h.value(s.units);
-    h.value(s.absolute_stiffness);
-    h.value(s.absolute_damping);
-  }
-}
-}  // namespace
-
 void hash_axis_controls(StateHasher& h, const AxisLimit& limit, bool motor_enabled,
                         double motor_speed, double motor_max, const AxisSpring& spring) {
   h.value(limit.enabled);

@@ -3,6 +3,8 @@
 
 #include <limits>
 
+#include "state_hasher.hpp"
+
 namespace softstep {
 
 JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
@@ -38,6 +40,16 @@ WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j) {
   const BodySlot& b = w.bodies[j.body_b];
   return {a.position + a.orientation * j.local_anchor_a,
           b.position + b.orientation * j.local_anchor_b};
+}
+
+void hash_spring(StateHasher& h, const Spring& s) {
+  h.value(s.hertz);
+  h.value(s.damping_ratio);
+  if (s.is_absolute()) {
+    h.value(s.units);
+    h.value(s.absolute_stiffness);
+    h.value(s.absolute_damping);
+  }
 }
 
 namespace {

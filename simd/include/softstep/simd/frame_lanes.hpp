@@ -79,28 +79,6 @@ SOFTSTEP_INLINE void prepare_axis_controls(AxisControlLanes<kWidth<L>>& g,
   if (signature & kAxisMotor) store_lanes(g.motor_max_impulse, load<L>(g.motor_max) * L(ctx.h));
 }
 
-// The spring row's coefficients where the lane's spring is in absolute units, from its k and c
-// and the row's K = 1/m_eff now (spring.hpp): a = h (c + h k) K, bias_rate = k / (c + h k),
-// mass_scale = a/(1+a), impulse_scale = 1/(1+a). A per-lane select, not a signature bit (no
-// kernel variant more to compile): a relative lane gets `relative` back bit for bit.
-template <class L>
-SOFTSTEP_INLINE RowCoefficients<L> absolute_spring_coefficients(
-    const AxisControlLanes<kWidth<L>>& g, const L& k_row, const RowCoefficients<L>& relative,
-    const SubstepContext& ctx) {
-  const L stiffness = load<L>(g.spring_stiffness);
-  const L damping = load<L>(g.spring_damping);
-  const auto absolute = stiffness > L(0.0f) || damping > L(0.0f);
-  const L h(ctx.h);
-  const L resistance = select(absolute, fmadd(h, stiffness, damping), L(1.0f));  // c + h k > 0
-  const L a = h * resistance * k_row;
-  const L inv_one_plus_a = L(1.0f) / (L(1.0f) + a);
-  RowCoefficients<L> co = relative;
-  co.bias_rate = select(absolute, stiffness / resistance, relative.bias_rate);
-  co.mass_scale = select(absolute, L(1.0f) - inv_one_plus_a, relative.mass_scale);
-  co.impulse_scale = select(absolute, inv_one_plus_a, relative.impulse_scale);
-  return co;
-}
-
 // The impulse the controls hold, along the axis (for the warm start).
 template <class L>
 SOFTSTEP_INLINE L axis_controls_impulse(const AxisControlLanes<kWidth<L>>& g,
@@ -127,7 +105,8 @@ SOFTSTEP_INLINE void solve_axis_controls(AxisControlLanes<kWidth<L>>& g, std::ui
                                         L(0.0f),
                                         L(0.0f),
                                         L(0.0f)};
-      const RowCoefficients<L> co = absolute_spring_coefficients(g, axis.k, relative, ctx);
+      const RowCoefficients<L> co = with_absolute_spring(
+          relative, load<L>(g.spring_stiffness), load<L>(g.spring_damping), axis.k, ctx.h);
       const L dp = bilateral_row_impulse<L, true, RowKind::Soft>(
           axis.cdot(), position + load<L>(g.spring_gap), axis.k, axis.m_eff, accumulated, co);
       store_lanes(g.spring_impulse, accumulated + dp);
