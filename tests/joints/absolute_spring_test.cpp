@@ -1,8 +1,9 @@
 // Springs in absolute units (spring.hpp, Spring::absolute): a stiffness k and damping c that
 // the solver converts with the row's effective mass in each sub-step. The motion is the
 // mass-spring-damper's of that k, c on the body's own mass (so the same spring is slower on a
-// heavier body, unlike a relative one), it matches the relative spring of the same k, c, the
-// wheel carries a chassis at m g / k, and JointReading::effective_mass is the analytic m_eff.
+// heavier body, unlike a relative one), it matches the relative spring of the same k, c, and
+// JointReading::effective_mass is the analytic m_eff. (The wheel's suspension in N/m:
+// wheel_test.cpp's CarBounce.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -96,7 +97,7 @@ TEST(AbsoluteSpring, SliderOscillatesAtSqrtKOverMAndHalvesOnFourTimesTheMass) {
   const Spring spring = Spring::absolute(k, c);
   double previous_hertz = 0.0;
   for (double m : {4.0, 16.0}) {
-    const SliderRun run = run_slider(m, spring, static_cast<int>(5.0 * 1.26 * std::sqrt(m) / kDt));
+    const SliderRun run = run_slider(m, spring, static_cast<int>(5.0 * kTwoPi * std::sqrt(m / k) / kDt));
     const Oscillator exact = implicit_euler(k, c, m, h);
     const Oscillator closed = continuous(k, c, m);
     EXPECT_NEAR(run.bounce.hertz, exact.hertz, 0.02 * exact.hertz) << m << " kg";
@@ -163,6 +164,46 @@ TEST(AbsoluteSpring, ZeroStiffnessIsAPureDamper) {
   EXPECT_NEAR(world.body(box).linear_velocity.x(), expected, 1e-4);
 }
 
+// The distance joint's spring in N/m: a 5 kg ball hung by no gravity from a static point on
+// a 1 m spring (rest length 1 m), released 0.1 m stretched along the line: m_eff = 5 kg, and
+// k = 125 N/m, c = 5 N s/m give omega 5 rad/s, zeta 0.1; on 20 kg half the frequency. Bounds
+// as for the slider.
+TEST(AbsoluteSpring, DistanceSpringOscillatesAtSqrtKOverMAndHalvesOnFourTimesTheMass) {
+  const double k = 125.0, c = 5.0;
+  double previous_hertz = 0.0;
+  for (double m : {5.0, 20.0}) {
+    WorldSettings settings;
+    settings.gravity = Eigen::Vector3d::Zero();
+    settings.sleeping = false;
+    World world(settings);
+    const BodyId ground = test::static_body(world);
+    const BodyId ball = test::dynamic_body(world, {1.1, 0.0, 0.0}, m, solid_sphere_inertia(m, 0.1));
+    DistanceJointDef d;
+    d.body_a = ground;
+    d.body_b = ball;
+    d.rest_length = 1.0;
+    d.spring = Spring::absolute(k, c);
+    const JointId joint = world.create_distance_joint(d);
+    EXPECT_DOUBLE_EQ(world.joint_reading(joint).effective_mass, m);
+    std::vector<double> lengths{world.joint_reading(joint).position};
+    const int steps = static_cast<int>(5.0 * kTwoPi / std::sqrt(k / m) / kDt);
+    for (int i = 0; i < steps; ++i) {
+      world.step(kDt);
+      lengths.push_back(world.joint_reading(joint).position);
+    }
+    const scenes::Bounce b = scenes::measure_bounce(lengths, 1.0, kDt);
+    const Oscillator exact = implicit_euler(k, c, m, substep());
+    const Oscillator closed = continuous(k, c, m);
+    EXPECT_NEAR(b.hertz, exact.hertz, 0.02 * exact.hertz) << m << " kg";
+    EXPECT_NEAR(b.damping_ratio, exact.damping_ratio, 0.02 * exact.damping_ratio) << m << " kg";
+    EXPECT_NEAR(b.hertz, closed.hertz, 0.01 * closed.hertz) << m << " kg";
+    if (previous_hertz > 0.0) {
+      EXPECT_NEAR(b.hertz, previous_hertz / 2.0, 0.01 * previous_hertz);
+    }
+    previous_hertz = b.hertz;
+  }
+}
+
 // A revolute spring in N m/rad about z through the centre of a body of inertia I_zz = 0.5
 // kg m^2 (A static: m_eff = I_zz): k = 2 N m/rad, c = 0.2 N m s/rad, omega = 2 rad/s,
 // zeta 0.1; bounds as for the slider.
@@ -194,47 +235,10 @@ TEST(AbsoluteSpring, RevoluteSpringInNewtonMetresPerRadianOscillatesAtSqrtKOverI
   EXPECT_NEAR(b.hertz, closed.hertz, 0.01 * closed.hertz);
 }
 
-// Cars whose suspensions are Spring::absolute(k, c) with the k, c of a 2 Hz, 0.3 spring on
-// the 300 kg each wheel carries (vehicle_scene.hpp): the chassis rests at the static
-// deflection m_s g / k whatever the wheels weigh, and bounces at 2 Hz with ratio 0.3 (the
-// bounds of wheel_test.cpp's CarBounce, whose relative spring this is).
-TEST(AbsoluteSpring, WheelSuspensionInNewtonsPerMetreCarriesTheChassisAtMgOverK) {
-  for (double wheel_mass : {10.0, 40.0}) {
-    scenes::VehicleOptions o;
-    o.wheel_mass = wheel_mass;
-    o.speed = 0.0;
-    o.motor_torque = 0.0;
-    o.absolute_every = 1;
-    WorldSettings settings;
-    settings.sleeping = false;
-    World world(settings);
-    const scenes::VehicleScene scene = scenes::build_vehicle(world, o);
-    const scenes::Car& car = scene.cars[0];
-    const WheelJointDef def = world.joint_def<WheelJointDef>(car.wheel_joints[0]);
-    ASSERT_TRUE(def.spring.spring.is_absolute());
-    const double k = def.spring.spring.absolute_stiffness;
-    const double sprung = o.chassis_mass / 4.0;
-    std::vector<double> heights{world.body(car.chassis).position.y()};
-    for (int i = 0; i < 450; ++i) {
-      world.step(kDt);
-      heights.push_back(world.body(car.chassis).position.y());
-    }
-    // The travel (wheel centre up the chassis's suspension axis) grows as the chassis sinks
-    // onto its springs: by m_s g / k at rest, where the soft step has no error.
-    EXPECT_NEAR(world.joint_reading(car.wheel_joints[0]).position, sprung * 9.81 / k, 1e-5)
-        << wheel_mass << " kg wheels";
-    const double rest = heights.back();
-    heights.resize(151);  // 2.5 s: five periods
-    const scenes::Bounce b = scenes::measure_bounce(heights, rest, kDt);
-    EXPECT_NEAR(b.hertz, o.hertz, 0.03 * o.hertz) << wheel_mass << " kg wheels";
-    EXPECT_NEAR(b.damping_ratio, o.damping_ratio, 0.03 * o.damping_ratio)
-        << wheel_mass << " kg wheels";
-  }
-}
-
 // JointReading::effective_mass: a slider between two free bodies through their centres sees
 // 1/(1/m_a + 1/m_b); off the centre the rotation terms add (arm x n).I^-1(arm x n); a hinge
-// sees n.(I_a^-1 + I_b^-1) n inverted; a ball joint has no axis row (NaN).
+// sees n.(I_a^-1 + I_b^-1) n inverted; a distance joint through the centres the slider's
+// 1/(1/m_a + 1/m_b); a ball joint has no one row (NaN).
 TEST(AbsoluteSpring, JointReadingGivesTheAnalyticEffectiveMass) {
   WorldSettings settings;
   settings.gravity = Eigen::Vector3d::Zero();
@@ -256,6 +260,13 @@ TEST(AbsoluteSpring, JointReadingGivesTheAnalyticEffectiveMass) {
       scenes::joint_at<RevoluteJointDef>(world, a, b, {0.5, 0.0, 0.0}, Eigen::Vector3d::UnitZ());
   EXPECT_NEAR(world.joint_reading(world.create_joint(hinge)).effective_mass,
               1.0 / (1.0 / 0.2 + 1.0 / 0.7), 1e-12);
+  // A distance joint through the centres: 1/(1/m_a + 1/m_b), as the slider along the line.
+  DistanceJointDef rod;
+  rod.body_a = a;
+  rod.body_b = b;
+  rod.rest_length = 1.0;
+  EXPECT_NEAR(world.joint_reading(world.create_distance_joint(rod)).effective_mass,
+              1.0 / (1.0 / ma + 1.0 / mb), 1e-12);
   BallJointDef ball;
   ball.body_a = a;
   ball.body_b = b;
@@ -308,17 +319,6 @@ TEST(AbsoluteSpring, BadValuesAndJointsThatTakeNoAbsoluteUnitsAreRejected) {
         f.world.create_ball_joint(d);
       },
       "BallJointDef.spring.units", "Absolute");
-  test::expect_rejected_on<Fixture>(
-      make_fixture,
-      [](Fixture& f) {
-        DistanceJointDef d;
-        d.body_a = f.ground;
-        d.body_b = f.box;
-        d.rest_length = 1.0;
-        d.spring = Spring::absolute(10.0, 1.0);
-        f.world.create_distance_joint(d);
-      },
-      "DistanceJointDef.spring.units", "Absolute");
   test::expect_rejected_on<Fixture>(
       make_fixture,
       [](Fixture& f) {
