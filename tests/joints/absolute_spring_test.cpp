@@ -364,5 +364,23 @@ TEST(AbsoluteSpring, SceneFileAndRecordingRoundTrip) {
   std::filesystem::remove(path);
 }
 
+// The README's suspension example ("Springs in absolute units", cut out by tests/CMakeLists.txt):
+// a 300 kg chassis corner (its centre at the wheel's, so gravity turns nothing) above a
+// static wheel comes to rest at the travel m g / k = 300 * 9.81 / 47,000 (ratio 0.3 at 2 Hz
+// decays by e^-(0.3 * 4 pi * 5) in 5 s: nothing left of the 6 cm bounce).
+TEST(AbsoluteSpring, ReadmeSuspensionExampleRestsAtMgOverK) {
+  World world;
+  const Eigen::Vector3d wheel_centre(1.3, 0.35, 0.8);
+  const BodyId chassis =
+      test::dynamic_body(world, wheel_centre, 300.0, solid_box_inertia(300.0, {1.0, 0.6, 1.0}));
+  const BodyId wheel = test::static_body(world, wheel_centre);
+  {
+#include "readme_examples/suspension_example.inc"
+    for (int i = 0; i < 300; ++i) world.step(kDt);
+    EXPECT_NEAR(world.joint_reading(suspension).position, 300.0 * 9.81 / 47'000.0, 1e-4);
+    EXPECT_NEAR(world.joint_reading(suspension).effective_mass, 300.0, 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace softstep
