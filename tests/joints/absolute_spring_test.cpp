@@ -53,6 +53,14 @@ Oscillator implicit_euler(double k, double c, double m, double h) {
   return {omega / kTwoPi, sigma / omega};
 }
 
+// No gravity, no sleeping: the springs alone move the bodies, for as long as a test watches.
+WorldSettings floating() {
+  WorldSettings settings;
+  settings.gravity = Eigen::Vector3d::Zero();
+  settings.sleeping = false;
+  return settings;
+}
+
 struct SliderRun {
   scenes::Bounce bounce;
   double effective_mass;
@@ -62,10 +70,7 @@ struct SliderRun {
 // A box of mass m on a prismatic joint along x through its centre, from a static ground, no
 // gravity, released 0.1 m from the spring's target: the row's m_eff is m exactly.
 SliderRun run_slider(double m, const Spring& spring, int steps) {
-  WorldSettings settings;
-  settings.gravity = Eigen::Vector3d::Zero();
-  settings.sleeping = false;
-  World world(settings);
+  World world(floating());
   const BodyId ground = test::static_body(world);
   const BodyId box =
       test::dynamic_body(world, {0.0, 1.0, 0.0}, m, solid_box_inertia(m, {0.4, 0.2, 0.3}));
@@ -145,10 +150,7 @@ TEST(AbsoluteSpring, EqualsTheRelativeSpringOfTheSameStiffnessAndDamping) {
 // m v' = -c v, by 1 / (1 + h c / m) per sub-step (implicit Euler), so after n sub-steps
 // v = v0 (1 + h c/m)^-n; the box never turns back.
 TEST(AbsoluteSpring, ZeroStiffnessIsAPureDamper) {
-  WorldSettings settings;
-  settings.gravity = Eigen::Vector3d::Zero();
-  settings.sleeping = false;
-  World world(settings);
+  World world(floating());
   const BodyId ground = test::static_body(world);
   const double m = 2.0, c = 3.0;
   const BodyId box = test::dynamic_body(world, {0.0, 1.0, 0.0}, m, solid_box_inertia(m, {0.4, 0.2, 0.3}));
@@ -172,10 +174,7 @@ TEST(AbsoluteSpring, DistanceSpringOscillatesAtSqrtKOverMAndHalvesOnFourTimesThe
   const double k = 125.0, c = 5.0;
   double previous_hertz = 0.0;
   for (double m : {5.0, 20.0}) {
-    WorldSettings settings;
-    settings.gravity = Eigen::Vector3d::Zero();
-    settings.sleeping = false;
-    World world(settings);
+    World world(floating());
     const BodyId ground = test::static_body(world);
     const BodyId ball = test::dynamic_body(world, {1.1, 0.0, 0.0}, m, solid_sphere_inertia(m, 0.1));
     DistanceJointDef d;
@@ -208,10 +207,7 @@ TEST(AbsoluteSpring, DistanceSpringOscillatesAtSqrtKOverMAndHalvesOnFourTimesThe
 // kg m^2 (A static: m_eff = I_zz): k = 2 N m/rad, c = 0.2 N m s/rad, omega = 2 rad/s,
 // zeta 0.1; bounds as for the slider.
 TEST(AbsoluteSpring, RevoluteSpringInNewtonMetresPerRadianOscillatesAtSqrtKOverI) {
-  WorldSettings settings;
-  settings.gravity = Eigen::Vector3d::Zero();
-  settings.sleeping = false;
-  World world(settings);
+  World world(floating());
   const BodyId ground = test::static_body(world);
   const double k = 2.0, c = 0.2, inertia = 0.5;
   const BodyId body = test::dynamic_body(world, {0.0, 1.0, 0.0}, 3.0,
@@ -240,9 +236,7 @@ TEST(AbsoluteSpring, RevoluteSpringInNewtonMetresPerRadianOscillatesAtSqrtKOverI
 // sees n.(I_a^-1 + I_b^-1) n inverted; a distance joint through the centres the slider's
 // 1/(1/m_a + 1/m_b); a ball joint has no one row (NaN).
 TEST(AbsoluteSpring, JointReadingGivesTheAnalyticEffectiveMass) {
-  WorldSettings settings;
-  settings.gravity = Eigen::Vector3d::Zero();
-  World world(settings);
+  World world(floating());
   const double ma = 2.0, mb = 6.0;
   const BodyId a = test::dynamic_body(world, {0.0, 0.0, 0.0}, ma, Eigen::Matrix3d::Identity() * 0.2);
   const BodyId b = test::dynamic_body(world, {1.0, 0.0, 0.0}, mb,

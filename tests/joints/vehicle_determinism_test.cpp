@@ -40,10 +40,7 @@ void add_dragged_boxes(World& world, int count) {
 
 // Boxes on revolute and prismatic joints from the ground whose springs alternate between
 // relative and absolute units in the same lane groups (the kernel's per-lane select).
-void add_sprung_sliders_and_hinges(World& world, int count) {
-  BodyDef ground;
-  ground.type = BodyType::Static;
-  const BodyId g = world.create_body(ground);
+void add_sprung_sliders_and_hinges(World& world, BodyId g, int count) {
   for (int i = 0; i < count; ++i) {
     BodyDef box;
     box.position = {0.4 * i, 8.0, 5.0};
@@ -86,9 +83,9 @@ std::optional<CarsRun> run(SimdWidth width, int threads) {
   cars.cars = 320;
   cars.steering = 0.05;
   cars.absolute_every = 3;  // every third car's suspension in N/m, in groups with relative ones
-  scenes::build_vehicle(*world, cars);
+  const scenes::VehicleScene scene = scenes::build_vehicle(*world, cars);
   add_dragged_boxes(*world, 64);
-  add_sprung_sliders_and_hinges(*world, 64);
+  add_sprung_sliders_and_hinges(*world, scene.ground, 64);
   CarsRun r;
   for (int i = 0; i < 130; ++i) {  // past the adaptive thread count's first probe
     world->step(1.0 / 60.0);
