@@ -55,7 +55,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Variant{scenes::ChainJoint::Ball, Spring::soft(5.0, 0.3), "soft_ball"},
                       Variant{scenes::ChainJoint::Distance, Spring::rigid(), "rigid_distance"},
                       Variant{scenes::ChainJoint::Distance, Spring::soft(8.0, 0.1),
-                              "soft_distance"}),
+                              "soft_distance"},
+                      Variant{scenes::ChainJoint::Distance, Spring::absolute(1000.0, 5.0),
+                              "absolute_distance"}),
     [](const ::testing::TestParamInfo<Variant>& p) { return std::string(p.param.name); });
 
 // The widths really differ in layout: the same chain packs into 1-, 4-, 8- and 16-lane groups.

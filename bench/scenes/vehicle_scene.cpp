@@ -20,7 +20,8 @@ BodyId dynamic(World& world, const Eigen::Vector3d& position, double mass,
   return world.create_body(d);
 }
 
-Car build_car(World& world, BodyId ground, const VehicleOptions& o, double z, VehicleScene& s) {
+Car build_car(World& world, BodyId ground, const VehicleOptions& o, int index, VehicleScene& s) {
+  const double z = 4.0 * index;
   Car car;
   const double axle_height = o.wheel_radius;
   car.start_height = axle_height + 0.3;  // the chassis centre 0.3 m above the axles, unloaded
@@ -58,6 +59,13 @@ Car build_car(World& world, BodyId ground, const VehicleOptions& o, double z, Ve
     w.frame_b = f.b;
     w.spring.spring = Spring::soft(o.hertz, o.damping_ratio);
     w.sprung_mass = o.chassis_mass / 4.0;
+    if (o.absolute_every > 0 && index % o.absolute_every == 0) {
+      // The same spring in N/m and N s/m (wheel.hpp): k = m_s omega^2, c = 2 m_s zeta omega.
+      const double omega = 2.0 * std::numbers::pi * o.hertz;
+      w.spring.spring =
+          Spring::absolute(w.sprung_mass * omega * omega, 2.0 * w.sprung_mass * o.damping_ratio * omega);
+      w.sprung_mass = 0.0;  // not used by an absolute spring
+    }
     w.limit = {true, -0.25, 0.25};
     w.motor = {o.motor_torque > 0.0, rolling, o.motor_torque};
     w.steering = k < 2 ? o.steering : 0.0;
@@ -76,7 +84,7 @@ VehicleScene build_vehicle(World& world, const VehicleOptions& o) {
   s.ground = world.create_body(g);
   const double omega = 2.0 * std::numbers::pi * o.hertz;
   s.promised_sag = 9.81 / (omega * omega);
-  for (int c = 0; c < o.cars; ++c) s.cars.push_back(build_car(world, s.ground, o, 4.0 * c, s));
+  for (int c = 0; c < o.cars; ++c) s.cars.push_back(build_car(world, s.ground, o, c, s));
   return s;
 }
 

@@ -29,6 +29,9 @@ struct VehicleOptions {
   double speed = 10.0;  // m/s along +x at the start
   double motor_torque = 200.0;  // N m per wheel motor, 0: wheels spin freely
   double steering = 0.0;        // rad, the front wheels (the carriages keep the car on its rail)
+  // Every n-th car (0, n, 2n, ...) gets its suspension as Spring::absolute(k, c) with the k and
+  // c the relative spring has on its sprung mass: the same car in N/m. 0: none.
+  int absolute_every = 0;
 };
 
 struct Car {

@@ -67,11 +67,13 @@ Spring Spring::from_erp_cfm(double erp, double cfm, double effective_mass, doubl
 }
 
 double Spring::stiffness(double effective_mass) const {
+  if (is_absolute()) return absolute_stiffness;
   const double omega = omega_of(hertz);
   return effective_mass * omega * omega;
 }
 
 double Spring::damping(double effective_mass) const {
+  if (is_absolute()) return absolute_damping;
   return 2.0 * effective_mass * damping_ratio * omega_of(hertz);
 }
 
@@ -82,6 +84,11 @@ SoftCoefficients Spring::coefficients(double effective_mass, double h) const {
   const double c = damping(effective_mass);
   const double gamma = 1.0 / (c + h * k);
   const double beta = h * k / (c + h * k);
+  if (is_absolute()) {
+    // a = h (c + h k) K with K = 1/m_eff (the top of spring.hpp).
+    const double a = h * (c + h * k) / effective_mass;
+    return {gamma, beta, beta / h, a / (1.0 + a), 1.0 / (1.0 + a)};
+  }
   const double omega = omega_of(hertz);
   const double a = h * omega * (2.0 * damping_ratio + h * omega);
   return {gamma, beta, beta / h, a / (1.0 + a), 1.0 / (1.0 + a)};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <utility>
 
 namespace softstep::validation {
 
@@ -122,6 +123,30 @@ void inertia_tensor(std::string_view call, std::string_view field, const Eigen::
 }
 
 void spring(std::string_view call, std::string_view field, const Spring& s) {
+  if (s.units != SpringUnits::Relative && s.units != SpringUnits::Absolute) {
+    reject(call, std::string(field) + ".units", std::to_string(static_cast<int>(s.units)),
+           "must be SpringUnits::Relative or SpringUnits::Absolute");
+  }
+  if (s.is_absolute()) {
+    // The same bound as every other magnitude: c + h k and a stay finite in float.
+    for (const auto& [name, value] : {std::pair{".absolute_stiffness", s.absolute_stiffness},
+                                      std::pair{".absolute_damping", s.absolute_damping}}) {
+      if (!(std::isfinite(value) && value >= 0.0 && value <= kMaxMagnitude)) {
+        reject(call, std::string(field) + name, format(value),
+               "must be finite, >= 0 and <= " + format(kMaxMagnitude));
+      }
+    }
+    if (s.hertz != 0.0 || s.damping_ratio != 0.0) {
+      reject(call, std::string(field) + ".hertz", format(s.hertz),
+             "must be 0 with damping_ratio 0 in absolute units (Spring::absolute)");
+    }
+    return;
+  }
+  if (s.absolute_stiffness != 0.0 || s.absolute_damping != 0.0) {
+    reject(call, std::string(field) + ".absolute_stiffness", format(s.absolute_stiffness),
+           "must be 0 with absolute_damping 0 in relative units (hertz, damping_ratio); use "
+           "Spring::absolute for a stiffness and damping");
+  }
   // A positive frequency below kMinPositive would overflow the softness's 1/a in float.
   if (std::isnan(s.hertz) || s.hertz < 0.0 || (s.hertz > 0.0 && s.hertz < kMinPositive) ||
       (s.hertz > kMaxMagnitude && !s.is_rigid())) {
@@ -132,6 +157,15 @@ void spring(std::string_view call, std::string_view field, const Spring& s) {
   if (!(std::isfinite(s.damping_ratio) && s.damping_ratio >= 0.0 &&
         s.damping_ratio <= kMaxMagnitude)) {
     non_negative(call, std::string(field) + ".damping_ratio", s.damping_ratio);
+  }
+}
+
+void relative_spring(std::string_view call, std::string_view field, const Spring& s) {
+  spring(call, field, s);
+  if (s.is_absolute()) {
+    reject(call, std::string(field) + ".units", "Absolute",
+           "absolute units (N/m, N m/rad) are taken by the revolute, prismatic, wheel and "
+           "distance joints' springs; give this spring as hertz and damping_ratio");
   }
 }
 

@@ -38,6 +38,9 @@ Quaternion unit_quaternion(std::string_view call, std::string_view field, const 
 void dynamic_mass(std::string_view call, std::string_view field, double mass);
 void inertia_tensor(std::string_view call, std::string_view field, const Eigen::Matrix3d& inertia);
 void spring(std::string_view call, std::string_view field, const Spring& spring);
+// spring() for the joints whose springs take only hertz and damping_ratio (Spring::absolute
+// is rejected naming the field and the joints that take it).
+void relative_spring(std::string_view call, std::string_view field, const Spring& spring);
 // |velocity| <= max_speed (WorldSettings.max_linear_speed), after finite(). `shown` is what
 // the caller was given (the velocity itself, or the impulse that would give it), formatted
 // only when the check fails.

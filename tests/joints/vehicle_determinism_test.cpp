@@ -2,11 +2,14 @@
 // 1 and 2 threads (DESIGN.md: "make that a test, not a hope"): 320 cars (steered, motored,
 // sprung, limited wheel joints; rails of free wheel joints) and boxes dragged by rigid and
 // soft motor joints, more than 4,096 bodies and joints so a step is shared between threads.
+// Every third car's suspension, and half of a set of sprung hinges and sliders, are springs
+// in absolute units, in the same lane groups as relative ones.
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <thread>
 
+#include "scenes/joint_at.hpp"
 #include "scenes/vehicle_scene.hpp"
 
 namespace softstep {
@@ -35,6 +38,31 @@ void add_dragged_boxes(World& world, int count) {
   }
 }
 
+// Boxes on revolute and prismatic joints from the ground whose springs alternate between
+// relative and absolute units in the same lane groups (the kernel's per-lane select).
+void add_sprung_sliders_and_hinges(World& world, BodyId g, int count) {
+  for (int i = 0; i < count; ++i) {
+    BodyDef box;
+    box.position = {0.4 * i, 8.0, 5.0};
+    box.angular_velocity = {0.0, 0.3, 0.1 * (i % 5)};
+    box.linear_velocity = {0.2 * (i % 3), 0.0, 0.0};
+    const BodyId b = world.create_body(box);
+    const Eigen::Vector3d at(0.4 * i + 0.1, 8.2, 5.0);
+    const Spring spring = i % 2 == 0 ? Spring::absolute(20.0 + i, 0.5 * (i % 3))
+                                     : Spring::soft(2.0 + 0.1 * i, 0.3);
+    if (i % 4 < 2) {
+      RevoluteJointDef r = scenes::joint_at<RevoluteJointDef>(world, g, b, at, {0.2, 1.0, 0.0});
+      r.spring = {spring, 0.1};
+      world.create_joint(r);
+    } else {
+      PrismaticJointDef p =
+          scenes::joint_at<PrismaticJointDef>(world, g, b, at, {1.0, 0.0, 0.3});
+      p.spring = {spring, -0.05};
+      world.create_joint(p);
+    }
+  }
+}
+
 struct CarsRun {
   std::uint64_t hash = 0;
   int shared_steps = 0;
@@ -54,8 +82,10 @@ std::optional<CarsRun> run(SimdWidth width, int threads) {
   scenes::VehicleOptions cars;
   cars.cars = 320;
   cars.steering = 0.05;
-  scenes::build_vehicle(*world, cars);
+  cars.absolute_every = 3;  // every third car's suspension in N/m, in groups with relative ones
+  const scenes::VehicleScene scene = scenes::build_vehicle(*world, cars);
   add_dragged_boxes(*world, 64);
+  add_sprung_sliders_and_hinges(*world, scene.ground, 64);
   CarsRun r;
   for (int i = 0; i < 130; ++i) {  // past the adaptive thread count's first probe
     world->step(1.0 / 60.0);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <ostream>
 
 #include "joints/joint_test_support.hpp"
 #include "scenes/vehicle_scene.hpp"
@@ -14,7 +15,15 @@ namespace {
 
 using test::kDt;
 
-class CarBounce : public ::testing::TestWithParam<double> {};
+struct Suspension {
+  double wheel_mass;  // kg
+  bool absolute;      // the springs as Spring::absolute(k, c) in N/m (vehicle_scene.hpp)
+};
+void PrintTo(const Suspension& s, std::ostream* os) {
+  *os << s.wheel_mass << " kg wheels" << (s.absolute ? ", N/m" : "");
+}
+
+class CarBounce : public ::testing::TestWithParam<Suspension> {};
 
 // A 1,200 kg car on four 2 Hz, 0.3 damping-ratio springs, its wheels held on rails at axle
 // height, released with its springs unloaded: its heave is a damped oscillator of
@@ -24,10 +33,12 @@ class CarBounce : public ::testing::TestWithParam<double> {};
 // wheel_joint_kernel.hpp) is under 1 % in both, and the rails' compliance (vehicle_scene.hpp)
 // lowers the frequency by at most 0.8 % (20 kg wheels); the bound is 3 %. A spring relative
 // to the row's own mass (dominated by the wheel) would bounce at about 2 Hz sqrt(m_wheel /
-// 300 kg), 0.5 Hz.
+// 300 kg), 0.5 Hz. The same springs in N/m (Spring::absolute(k, c), tuned for the chassis
+// not the wheel) must carry the chassis at the same m_s g / k and bounce the same.
 TEST_P(CarBounce, AtTheSpringsFrequencyAndDampingRatioWhateverTheWheelsWeigh) {
   scenes::VehicleOptions o;
-  o.wheel_mass = GetParam();
+  o.wheel_mass = GetParam().wheel_mass;
+  o.absolute_every = GetParam().absolute ? 1 : 0;
   o.speed = 0.0;
   o.motor_torque = 0.0;
   WorldSettings settings;
@@ -40,10 +51,17 @@ TEST_P(CarBounce, AtTheSpringsFrequencyAndDampingRatioWhateverTheWheelsWeigh) {
     world.step(kDt);
     heights.push_back(world.body(car.chassis).position.y());
   }
-  // The spring's travel at rest is its static deflection M g / (4 k) = g / omega^2: the soft
-  // step has no error at equilibrium (its impulse is then the static force exactly). The
-  // chassis rests where it settled (the rails' own sag, about 1 mm, lies below it).
-  EXPECT_NEAR(world.joint_reading(car.wheel_joints[0]).position, scene.promised_sag, 1e-5);
+  // The spring's travel at rest is its static deflection m_s g / k (m_s = M / 4; g / omega^2
+  // for the relative spring): the soft step has no error at equilibrium (its impulse is then
+  // the static force exactly). k from the joint's own spring (Spring::stiffness: m_s omega^2
+  // or the absolute k). The chassis rests where it settled (the rails' own sag, about 1 mm,
+  // lies below it).
+  const WheelJointDef def = world.joint_def<WheelJointDef>(car.wheel_joints[0]);
+  ASSERT_EQ(def.spring.spring.is_absolute(), GetParam().absolute);
+  const double sprung = o.chassis_mass / 4.0;
+  const double k = def.spring.spring.stiffness(sprung);
+  EXPECT_NEAR(world.joint_reading(car.wheel_joints[0]).position, sprung * 9.81 / k, 1e-5);
+  EXPECT_NEAR(scene.promised_sag, sprung * 9.81 / k, 1e-9);
   const double rest = heights.back();
   // 2.5 s: five periods, the amplitude falls from 0.06 m to 1e-5 m.
   heights.resize(151);
@@ -52,7 +70,10 @@ TEST_P(CarBounce, AtTheSpringsFrequencyAndDampingRatioWhateverTheWheelsWeigh) {
   EXPECT_NEAR(b.damping_ratio, o.damping_ratio, 0.03 * o.damping_ratio);
 }
 
-INSTANTIATE_TEST_SUITE_P(WheelMasses, CarBounce, ::testing::Values(10.0, 20.0, 40.0));
+INSTANTIATE_TEST_SUITE_P(WheelMasses, CarBounce,
+                         ::testing::Values(Suspension{10.0, false}, Suspension{20.0, false},
+                                           Suspension{40.0, false}, Suspension{10.0, true},
+                                           Suspension{40.0, true}));
 
 struct LoneWheel {
   World world;

@@ -65,6 +65,18 @@ struct JointReading {
   double limit_impulse = 0.0;
   double motor_impulse = 0.0;
   double spring_impulse = 0.0;
+  // The effective mass m_eff = 1/K the joint's axis row sees now (the spring, motor and limit
+  // row: what a Spring's hertz is relative to, and what a Spring::absolute's k and c act on),
+  // from the poses and masses at the reading:
+  //   revolute: about the hinge axis, kg m^2: 1 / (z.(I_a^-1 + I_b^-1) z)
+  //   prismatic, wheel: along the slide (suspension) axis through B's anchor, kg:
+  //     1 / (1/m_a + 1/m_b + the two bodies' rotation terms); 1/(1/m_a + 1/m_b) on the
+  //     centres' line
+  //   distance: along the line between the anchors, kg, the same form with each anchor's
+  //     arm (NaN while the anchors coincide: no direction)
+  // +infinity when neither body can move along the row. NaN for the joints whose springs
+  // are 3-row blocks (ball, weld, swing-twist, motor joint): no one row to read.
+  double effective_mass = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace softstep

@@ -71,7 +71,9 @@ double DistanceKind::tension(const JointSlot&, const float* impulse) {
 template <int W>
 void DistanceKind::fill_lane(Group<W>& g, int lane, const JointSlot& j) {
   const Def& d = std::get<Def>(j.def);
-  fill_spring_lanes(g, lane, d.spring);
+  fill_spring_lanes(g, lane, d.spring);  // hertz 0 when absolute: k and c below instead
+  g.spring_stiffness[lane] = static_cast<float>(d.spring.absolute_stiffness);
+  g.spring_damping[lane] = static_cast<float>(d.spring.absolute_damping);
   const bool rigid = d.spring.is_rigid();
   g.rest_length[lane] = static_cast<float>(d.rest_length);
   g.min_length[lane] = static_cast<float>(d.min_length);
@@ -137,13 +139,18 @@ void DistanceKind::reading(const World::Impl& w, const JointSlot& j, const float
   r.position = length;
   r.limit_impulse = double(impulse[1]) - double(impulse[2]);
   r.spring_impulse = impulse[0];
+  // The axis row's arms (distance_joint_kernel.hpp): each anchor from its body's centre.
+  const BodySlot& a = w.bodies[j.body_a];
+  const BodySlot& b = w.bodies[j.body_b];
+  r.effective_mass = length > 1e-9 ? linear_effective_mass(a, b, anchors.a - a.position,
+                                                           anchors.b - b.position, n)
+                                   : std::numeric_limits<double>::quiet_NaN();
 }
 
 // The bytes the state hash took before the registry, so the golden hashes still hold.
 void DistanceKind::hash(StateHasher& h, const JointSlot& j) {
   const Def& d = std::get<Def>(j.def);
-  h.value(d.spring.hertz);
-  h.value(d.spring.damping_ratio);
+  hash_spring(h, d.spring);
   h.value(d.rest_length);
   h.value(d.min_length);
   h.value(d.max_length);

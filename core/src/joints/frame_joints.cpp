@@ -136,6 +136,13 @@ std::string axis_parts(std::uint32_t signature) {
   return s;
 }
 
+double slider_effective_mass(const World::Impl& w, const JointSlot& j, const WorldAnchors& anchors,
+                             const Eigen::Vector3d& axis) {
+  const BodySlot& a = w.bodies[j.body_a];
+  const BodySlot& b = w.bodies[j.body_b];
+  return linear_effective_mass(a, b, anchors.b - a.position, anchors.b - b.position, axis);
+}
+
 double read_axis_controls(const float* impulse, JointReading& r) {
   r.limit_impulse = double(impulse[kAxisImpulses]) - double(impulse[kAxisImpulses + 1]);
   r.motor_impulse = impulse[kAxisImpulses + 2];
@@ -151,8 +158,7 @@ void hash_axis_controls(StateHasher& h, const AxisLimit& limit, bool motor_enabl
   h.value(motor_enabled);
   h.value(motor_speed);
   h.value(motor_max);
-  h.value(spring.spring.hertz);
-  h.value(spring.spring.damping_ratio);
+  hash_spring(h, spring.spring);
   h.value(spring.target);
 }
 

@@ -70,8 +70,10 @@ void fill_axis_controls(simd::AxisControlLanes<W>& g, int lane, const AxisLimit&
                         const JointSlot& j) {
   g.motor_speed[lane] = static_cast<float>(motor_speed);
   g.motor_max[lane] = static_cast<float>(motor_max);
-  g.spring_hertz[lane] = static_cast<float>(spring.spring.hertz);
+  g.spring_hertz[lane] = static_cast<float>(spring.spring.hertz);  // 0 when absolute
   g.spring_zeta[lane] = static_cast<float>(spring.spring.damping_ratio);
+  g.spring_stiffness[lane] = static_cast<float>(spring.spring.absolute_stiffness);  // 0 if relative
+  g.spring_damping[lane] = static_cast<float>(spring.spring.absolute_damping);
   g.lower_impulse[lane] = j.impulse[kAxisImpulses];
   g.upper_impulse[lane] = j.impulse[kAxisImpulses + 1];
   g.motor_impulse[lane] = j.impulse[kAxisImpulses + 2];
@@ -97,6 +99,11 @@ void read_axis_impulses(const simd::AxisControlLanes<W>& g, int lane, float* out
   out[kAxisImpulses + 2] = g.motor_impulse[lane];
   out[kAxisImpulses + 3] = g.spring_impulse[lane];
 }
+
+// The effective mass of a slider row along unit `axis` now (prismatic, wheel: the arms of
+// axis_part.hpp, B's anchor from each centre), for JointReading::effective_mass.
+double slider_effective_mass(const World::Impl& w, const JointSlot& j, const WorldAnchors& anchors,
+                             const Eigen::Vector3d& axis);
 
 // The axis controls' impulses into a reading; returns their sum along the axis.
 double read_axis_controls(const float* impulse, JointReading& r);

@@ -1,6 +1,10 @@
 // What the joint kinds share on the core side (joint_common.hpp).
 #include "joints/joint_common.hpp"
 
+#include <limits>
+
+#include "state_hasher.hpp"
+
 namespace softstep {
 
 JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
@@ -36,6 +40,41 @@ WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j) {
   const BodySlot& b = w.bodies[j.body_b];
   return {a.position + a.orientation * j.local_anchor_a,
           b.position + b.orientation * j.local_anchor_b};
+}
+
+void hash_spring(StateHasher& h, const Spring& s) {
+  h.value(s.hertz);
+  h.value(s.damping_ratio);
+  if (s.is_absolute()) {
+    h.value(s.units);
+    h.value(s.absolute_stiffness);
+    h.value(s.absolute_damping);
+  }
+}
+
+namespace {
+// n.I^-1 n in world axes for a dynamic body (inverse_inertia is 0 otherwise).
+double angular_compliance(const BodySlot& b, const Eigen::Vector3d& n) {
+  const Eigen::Vector3d local = b.orientation.conjugate() * n;
+  return local.dot(b.inverse_inertia * local);
+}
+double inverse_mass(const BodySlot& b) {
+  return b.type == BodyType::Dynamic && b.mass > 0.0 ? 1.0 / b.mass : 0.0;
+}
+double inverse_or_infinity(double k) {
+  return k > 0.0 ? 1.0 / k : std::numeric_limits<double>::infinity();
+}
+}  // namespace
+
+double linear_effective_mass(const BodySlot& a, const BodySlot& b, const Eigen::Vector3d& arm_a,
+                             const Eigen::Vector3d& arm_b, const Eigen::Vector3d& n) {
+  return inverse_or_infinity(inverse_mass(a) + inverse_mass(b) +
+                             angular_compliance(a, arm_a.cross(n)) +
+                             angular_compliance(b, arm_b.cross(n)));
+}
+
+double angular_effective_mass(const BodySlot& a, const BodySlot& b, const Eigen::Vector3d& n) {
+  return inverse_or_infinity(angular_compliance(a, n) + angular_compliance(b, n));
 }
 
 }  // namespace softstep

@@ -31,6 +31,21 @@ struct WorldAnchors {
 };
 WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j);
 
+class StateHasher;
+
+// A spring into the state hash: a relative one as it always was (the golden hashes hold), an
+// absolute one with its units, k and c after.
+void hash_spring(StateHasher& h, const Spring& spring);
+
+// The effective mass m_eff = 1/K a row sees now, from the double poses (JointReading's
+// effective_mass): a linear row pushing B along unit n at arm_b from its centre and A back at
+// arm_a, K = 1/m_a + 1/m_b + (arm_a x n).I_a^-1 (arm_a x n) + (arm_b x n).I_b^-1 (arm_b x n),
+// kg; an angular row about unit n, K = n.(I_a^-1 + I_b^-1) n, kg m^2. Only dynamic bodies
+// count; +infinity when neither end can move along the row.
+double linear_effective_mass(const BodySlot& a, const BodySlot& b, const Eigen::Vector3d& arm_a,
+                             const Eigen::Vector3d& arm_b, const Eigen::Vector3d& n);
+double angular_effective_mass(const BodySlot& a, const BodySlot& b, const Eigen::Vector3d& n);
+
 // The lane functions of kind K for the four widths, in the kind's .cpp.
 #define SOFTSTEP_INSTANTIATE_KIND_LANES(K, W)                         \
   template void K::fill_lane<W>(K::Group<W>&, int, const JointSlot&); \

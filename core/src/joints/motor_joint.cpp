@@ -91,7 +91,7 @@ JointSlot MotorKind::make_slot(const World::Impl& w, std::string_view call, cons
   }
   for (const auto& [name, spring] :
        {std::pair{".linear", def.linear}, std::pair{".angular", def.angular}}) {
-    validation::spring(call, prefix + name, spring);
+    validation::relative_spring(call, prefix + name, spring);
     if (spring.is_free()) {
       validation::reject(call, prefix + name + ".hertz", "0",
                          "a motor joint's half is rigid or soft (a zero cap leaves it idle)");

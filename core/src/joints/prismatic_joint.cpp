@@ -102,6 +102,7 @@ void PrismaticKind::reading(const World::Impl& w, const JointSlot& j, const floa
   r.position = gap.dot(z_a);
   r.error = (gap - r.position * z_a).norm();
   r.angular_error = Eigen::AngleAxisd(f.b * f.a.conjugate()).angle();
+  r.effective_mass = slider_effective_mass(w, j, anchors, z_a);
 }
 
 void PrismaticKind::hash(StateHasher& h, const JointSlot& j) {

@@ -107,6 +107,7 @@ void RevoluteKind::reading(const World::Impl& w, const JointSlot& j, const float
   r.error = (anchors.b - anchors.a).norm();
   r.angular_error = std::acos(std::clamp(z_a.dot(z_b), -1.0, 1.0));
   r.position = unwrap_angle(j.angle, wrapped_hinge_angle(f));
+  r.effective_mass = angular_effective_mass(w.bodies[j.body_a], w.bodies[j.body_b], z_a);
 }
 
 void RevoluteKind::hash(StateHasher& h, const JointSlot& j) {

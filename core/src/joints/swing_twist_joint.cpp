@@ -190,7 +190,7 @@ JointSlot SwingTwistKind::make_slot(const World::Impl& w, std::string_view call,
       }
     }
   }
-  validation::spring(call, prefix + ".spring.spring", def.spring.spring);
+  validation::relative_spring(call, prefix + ".spring.spring", def.spring.spring);
   if (def.spring.spring.is_rigid()) {
     validation::reject(call, prefix + ".spring.spring.hertz", "inf",
                        "an orientation spring is soft or free (a weld joint holds rigidly)");

@@ -96,8 +96,8 @@ JointSlot WeldKind::make_slot(const World::Impl& w, std::string_view call, const
   JointSlot j =
       checked_frame_ends(w, call, def_name, def.body_a, def.body_b, stored.frame_a, stored.frame_b);
   const std::string prefix(def_name);
-  validation::spring(call, prefix + ".linear", def.linear);
-  validation::spring(call, prefix + ".angular", def.angular);
+  validation::relative_spring(call, prefix + ".linear", def.linear);
+  validation::relative_spring(call, prefix + ".angular", def.angular);
   j.type = type;
   j.def = stored;
   return j;

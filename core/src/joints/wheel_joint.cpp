@@ -82,7 +82,8 @@ JointSlot WheelKind::make_slot(const World::Impl& w, std::string_view call, cons
   const std::string prefix(def_name);
   check_axis_spring(call, prefix + ".spring", def.spring);
   validation::finite(call, prefix + ".sprung_mass", def.sprung_mass);
-  if (def.spring.spring.is_free()) {
+  if (def.spring.spring.is_free() || def.spring.spring.is_absolute()) {
+    // An absolute spring gives its k and c itself: the sprung mass is not used.
     validation::non_negative(call, prefix + ".sprung_mass", def.sprung_mass);
   } else if (!(def.sprung_mass > 0.0)) {
     validation::reject(call, prefix + ".sprung_mass", validation::format(def.sprung_mass),
@@ -129,6 +130,7 @@ void WheelKind::reading(const World::Impl& w, const JointSlot& j, const float* i
   r.error = (gap - r.position * up).norm();
   const Eigen::Vector3d wheel_axle = f.b * Eigen::Vector3d::UnitX();
   r.angular_error = std::acos(std::clamp(wheel_axle.dot(axle), -1.0, 1.0));
+  r.effective_mass = slider_effective_mass(w, j, anchors, up);
 }
 
 void WheelKind::hash(StateHasher& h, const JointSlot& j) {

@@ -34,9 +34,13 @@ double mechanical_energy(const World& world, std::span<const BodyId> bodies,
     const reference::JointRows rows =
         reference::joint_rows(world, id, [&world](BodyId b) { return frame_now(world, b); });
     if (rows.count == 0 || rows.spring.is_rigid()) continue;
-    const double omega = 2.0 * std::numbers::pi * rows.spring.hertz;
     const int n = rows.count;
     const Eigen::VectorXd c = rows.error.head(n);
+    if (rows.spring.is_absolute()) {  // k itself, N/m (a distance joint's one row)
+      energy += 0.5 * rows.spring.absolute_stiffness * c.squaredNorm();
+      continue;
+    }
+    const double omega = 2.0 * std::numbers::pi * rows.spring.hertz;
     const Eigen::MatrixXd k = rows.k.topLeftCorner(n, n);
     energy += 0.5 * omega * omega * c.dot(k.ldlt().solve(c));
   }

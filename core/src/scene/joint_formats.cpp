@@ -21,6 +21,10 @@ nlohmann::json vector_json(const Eigen::Vector3d& v) {
 
 nlohmann::json spring_json(const Spring& spring) {
   if (spring.is_rigid()) return "rigid";
+  if (spring.is_absolute()) {
+    return {{"absolute_stiffness", spring.absolute_stiffness},
+            {"absolute_damping", spring.absolute_damping}};
+  }
   return {{"hertz", spring.hertz}, {"damping_ratio", spring.damping_ratio}};
 }
 

@@ -148,11 +148,20 @@ Spring ObjectReader::spring(const char* key, const Spring& fallback) {
   if (v->is_string() && *v == "rigid") return Spring::rigid();
   if (v->is_string() && *v == "free") return Spring::free();
   if (!v->is_object())
-    wrong_type(key, "\"rigid\", \"free\" or {\"hertz\": F, \"damping_ratio\": Z}");
+    wrong_type(key,
+               "\"rigid\", \"free\", {\"hertz\": F, \"damping_ratio\": Z} or "
+               "{\"absolute_stiffness\": K, \"absolute_damping\": C}");
   ObjectReader fields(source_, *v, path_of(key));
   Spring s;
-  s.hertz = fields.number("hertz");
-  s.damping_ratio = fields.number("damping_ratio", 0.0);
+  if (fields.has("absolute_stiffness") || fields.has("absolute_damping")) {
+    // Absolute units (spring.hpp); a spring without these keys is relative, as every file
+    // written before them.
+    s = Spring::absolute(fields.number("absolute_stiffness", 0.0),
+                         fields.number("absolute_damping", 0.0));
+  } else {
+    s.hertz = fields.number("hertz");
+    s.damping_ratio = fields.number("damping_ratio", 0.0);
+  }
   fields.no_other_keys();
   return s;
 }

@@ -38,7 +38,8 @@ class ObjectReader {
   Eigen::Vector3d vec3(const char* key, const Eigen::Vector3d& fallback);
   Eigen::Matrix3d mat3(const char* key, const Eigen::Matrix3d& fallback);  // rows
   Quaternion quaternion(const char* key, const Quaternion& fallback);      // [w, x, y, z]
-  // "rigid", "free", or {"hertz": F, "damping_ratio": Z}.
+  // "rigid", "free", {"hertz": F, "damping_ratio": Z}, or in absolute units
+  // {"absolute_stiffness": K, "absolute_damping": C} (either may be left out: 0).
   Spring spring(const char* key, const Spring& fallback);
   // A body by its index in the file's "bodies" array (required).
   BodyId body(const char* key, const std::vector<BodyId>& bodies);

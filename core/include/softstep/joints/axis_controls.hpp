@@ -34,6 +34,9 @@ struct LinearMotor {
 // Pulls the position towards `target` like a damped spring of the given frequency, felt by
 // the effective mass the axis row sees (as every Spring in softstep). Soft or free (the
 // default: no spring); a rigid spring is rejected (lock the axis with a limit instead).
+// Or in absolute units, Spring::absolute(k, c): N m/rad and N m s/rad on a revolute joint's
+// angle, N/m and N s/m on a prismatic joint's or a wheel's travel; the solver converts with
+// the row's effective mass in each sub-step (JointReading::effective_mass reads it).
 struct AxisSpring {
   Spring spring = Spring::free();
   double target = 0.0;  // rad or m

@@ -16,7 +16,10 @@
 // damping are k = sprung_mass (2 pi hertz)^2 and c = 2 sprung_mass damping_ratio (2 pi hertz),
 // so the car bounces at `hertz` with `damping_ratio` whatever its wheels weigh. (The row's own
 // effective mass is dominated by the light wheel: a frequency relative to it would give a far
-// softer spring, and the car would sink.) A soft spring needs sprung_mass > 0. The spring's
+// softer spring, and the car would sink.) A soft spring needs sprung_mass > 0, unless it is
+// given in absolute units: Spring::absolute(k, c) in N/m and N s/m is the chassis's spring
+// itself (sprung_mass is then unused, >= 0), the same path and the same damping correction
+// as k = sprung_mass omega^2, c = 2 sprung_mass zeta omega (wheel_joint_kernel.hpp). The spring's
 // target is the travel at which it is unloaded: under gravity g the car rides g / (2 pi
 // hertz)^2 below it.
 //

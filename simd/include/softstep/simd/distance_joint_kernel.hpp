@@ -18,6 +18,10 @@ struct alignas(kLaneAlign<W>) DistanceJointGroup : JointLanes<W> {
   float max_length[W];
   float lower_enabled[W];  // 1 when the lower limit row exists (min > 0, not rigid), else 0
   float upper_enabled[W];  // 1 when the upper limit row exists (max finite, not rigid), else 0
+  // A spring in absolute units (Spring::absolute, hertz 0): k in N/m, c in N s/m, converted
+  // with the row's K in each solve (with_absolute_spring); both 0 in a relative lane.
+  float spring_stiffness[W];
+  float spring_damping[W];
   // Accumulated impulses of the current sub-step along n, N s:
   float impulse[W];
   float lower_impulse[W];
@@ -87,8 +91,13 @@ SOFTSTEP_INLINE void solve_distance_joints(DistanceJointGroup<kWidth<L>>& g,
                          : (F.row == RowKind::Any || F.row == RowKind::Rigid)) {
     const L cdot = dot(n, relative_velocity(j));
     const L accumulated = load<L>(g.impulse);
+    RowCoefficients<L> co = load_coefficients<L>(g);
+    if constexpr (kUseBias && (F.row == RowKind::Soft || F.row == RowKind::Any)) {
+      co = with_absolute_spring(co, load<L>(g.spring_stiffness), load<L>(g.spring_damping), k,
+                                ctx.h);
+    }
     const L dp = bilateral_row_impulse<L, kUseBias, F.row>(
-        cdot, length - load<L>(g.rest_length), k, axial, accumulated, load_coefficients<L>(g));
+        cdot, length - load<L>(g.rest_length), k, axial, accumulated, co);
     store_lanes(g.impulse, accumulated + dp);
     apply_impulse(j, dp * n);
   }

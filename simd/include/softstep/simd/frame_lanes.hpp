@@ -47,8 +47,13 @@ struct alignas(kLaneAlign<W>) AxisControlLanes {
   float spring_gap[W];  // C_spring = position + spring_gap
   float motor_speed[W];
   float motor_max[W];  // N or N m
-  float spring_hertz[W];
+  float spring_hertz[W];  // relative units (0 in a lane whose spring is absolute)
   float spring_zeta[W];
+  // Absolute units (Spring::absolute): k in N/m or N m/rad, c in N s/m or N m s/rad; both 0
+  // in a lane whose spring is relative. A lane with either > 0 converts with its row's K in
+  // each sub-step (absolute_spring_coefficients); the others keep the prepared coefficients.
+  float spring_stiffness[W];
+  float spring_damping[W];
   // Prepared once per step:
   float spring_bias_rate[W];
   float spring_mass_scale[W];
@@ -94,12 +99,14 @@ SOFTSTEP_INLINE void solve_axis_controls(AxisControlLanes<kWidth<L>>& g, std::ui
   if constexpr (kUseBias) {
     if (signature & kAxisSpring) {
       const L accumulated = load<L>(g.spring_impulse);
-      const RowCoefficients<L> co{load<L>(g.spring_bias_rate),
-                                  load<L>(g.spring_mass_scale),
-                                  load<L>(g.spring_impulse_scale),
-                                  L(0.0f),
-                                  L(0.0f),
-                                  L(0.0f)};
+      const RowCoefficients<L> relative{load<L>(g.spring_bias_rate),
+                                        load<L>(g.spring_mass_scale),
+                                        load<L>(g.spring_impulse_scale),
+                                        L(0.0f),
+                                        L(0.0f),
+                                        L(0.0f)};
+      const RowCoefficients<L> co = with_absolute_spring(
+          relative, load<L>(g.spring_stiffness), load<L>(g.spring_damping), axis.k, ctx.h);
       const L dp = bilateral_row_impulse<L, true, RowKind::Soft>(
           axis.cdot(), position + load<L>(g.spring_gap), axis.k, axis.m_eff, accumulated, co);
       store_lanes(g.spring_impulse, accumulated + dp);

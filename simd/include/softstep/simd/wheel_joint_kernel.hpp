@@ -22,6 +22,9 @@
 // give it back (c' = max(0, c - h k / 2)), so that the car's bounce decays with the ratio the
 // designer set (within 1 % of it, and the frequency within 1 %, at those settings). Below
 // h omega / 2 the ratio cannot be reached (c' = 0).
+// A spring in absolute units (Spring::absolute) gives k and c itself (the lanes'
+// spring_stiffness and spring_damping, the sprung mass unused) and takes the same path,
+// the same c' included: absolute(m_s omega^2, 2 m_s zeta omega) is the relative spring.
 #pragma once
 
 #include "softstep/simd/frame_lanes.hpp"
@@ -51,10 +54,16 @@ SOFTSTEP_INLINE void prepare_sprung_spring(AxisControlLanes<kWidth<L>>& g, const
                                            const SubstepContext& ctx) {
   const L omega = L(2.0f * std::numbers::pi_v<float>) * load<L>(g.spring_hertz);
   const L h(ctx.h);
-  const L stiffness = sprung_mass * omega * omega;
+  const L absolute_stiffness = load<L>(g.spring_stiffness);
+  const L absolute_damping = load<L>(g.spring_damping);
+  const auto absolute = absolute_stiffness > L(0.0f) || absolute_damping > L(0.0f);
+  // A per-lane select: a relative lane's k and c are computed as before, bit for bit.
+  const L stiffness = select(absolute, absolute_stiffness, sprung_mass * omega * omega);
   const L half_step_stiffness = L(0.5f) * h * stiffness;
   const L damping = max_lanes(
-      L(2.0f) * sprung_mass * load<L>(g.spring_zeta) * omega - half_step_stiffness, L(0.0f));
+      select(absolute, absolute_damping, L(2.0f) * sprung_mass * load<L>(g.spring_zeta) * omega) -
+          half_step_stiffness,
+      L(0.0f));
   const L resistance = fmadd(h, stiffness, damping);  // c' + h k, > 0 (validated)
   const auto ok = resistance > L(0.0f);
   const L safe = select(ok, resistance, L(1.0f));

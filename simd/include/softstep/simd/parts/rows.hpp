@@ -26,6 +26,31 @@ SOFTSTEP_INLINE RowCoefficients<L> load_coefficients(const SoftRowLanes<kWidth<L
           load<L>(g.feedback),  load<L>(g.max_bias),   load<L>(g.relax_scale)};
 }
 
+// A row's coefficients where its lane's spring is in absolute units (Spring::absolute: k in
+// N/m or N m/rad, c in N s/m or N m s/rad, both 0 in a relative lane), from the row's
+// K = 1/m_eff now: a = h (c + h k) K, bias_rate = k / (c + h k), mass_scale = a/(1+a),
+// impulse_scale = 1/(1+a), feedback = 1/a (softness.hpp; the relative form is this with
+// k = m_eff omega^2, c = 2 m_eff zeta omega). A per-lane select on k > 0 || c > 0, not a
+// signature bit (no kernel variant more to compile): a relative lane gets `relative` back
+// bit for bit.
+template <class L>
+SOFTSTEP_INLINE RowCoefficients<L> with_absolute_spring(const RowCoefficients<L>& relative,
+                                                        const L& stiffness, const L& damping,
+                                                        const L& k_row, float h) {
+  const auto absolute = stiffness > L(0.0f) || damping > L(0.0f);
+  const L hl(h);
+  const L resistance = select(absolute, fmadd(hl, stiffness, damping), L(1.0f));  // c + h k > 0
+  const L a = hl * resistance * k_row;
+  const L inv_one_plus_a = L(1.0f) / (L(1.0f) + a);
+  const auto stiff = absolute && a > L(0.0f);
+  RowCoefficients<L> co = relative;
+  co.bias_rate = select(absolute, stiffness / resistance, relative.bias_rate);
+  co.mass_scale = select(absolute, L(1.0f) - inv_one_plus_a, relative.mass_scale);
+  co.impulse_scale = select(absolute, inv_one_plus_a, relative.impulse_scale);
+  co.feedback = select(stiff, L(1.0f) / select(stiff, a, L(1.0f)), relative.feedback);
+  return co;
+}
+
 // What a rigid row solves with: the same values prepare_row_coefficients<Rigid> stores.
 template <class L>
 SOFTSTEP_INLINE RowCoefficients<L> rigid_coefficients(const SubstepContext& ctx) {
