@@ -453,11 +453,12 @@ bool simd_width_supported(SimdWidth width) {
     case SimdWidth::Avx2:
       return __builtin_cpu_supports("avx2") && fma_ok;
     case SimdWidth::Avx512:
-      // The x86-64-v4 set the 16-lane files are compiled for (core/CMakeLists.txt); libgcc's
-      // check includes the operating system's support for the 512-bit register state.
+      // The x86-64-v4 set the 16-lane files are compiled for (core/CMakeLists.txt), with FMA in
+      // every build (Eigen needs it beside AVX-512); libgcc's check includes the operating
+      // system's support for the 512-bit register state.
       return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
              __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
-             __builtin_cpu_supports("avx512vl") && fma_ok;
+             __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("fma");
   }
   return false;
 }
@@ -475,7 +476,9 @@ std::string simd_width_requirement(SimdWidth width) {
       isa = "AVX2";
       break;
     case SimdWidth::Avx512:
-      isa = "AVX-512 (F, CD, DQ, BW and VL)";
+      // FMA even where the build does not fuse: Eigen needs it beside AVX-512.
+      isa = SOFTSTEP_USE_FMA ? "AVX-512 (F, CD, DQ, BW and VL)"
+                             : "AVX-512 (F, CD, DQ, BW and VL) and FMA";
       break;
   }
   return SOFTSTEP_USE_FMA ? isa + " with FMA (this build fuses multiply-adds)" : isa;
