@@ -204,7 +204,10 @@ TEST(SwingTwist, HoldsTheConeNearTheSingularSwing) {
     largest = std::max(largest, r.swing);
   }
   EXPECT_GT(largest, 3.1 - 1e-3) << "never reached the cone's edge";
-  EXPECT_LT(largest, 3.1 + rigid_row_bound(alpha, kDt / 4));
+  // The steady rigid-row bound plus 1 mrad for the float rows near the singular swing: the
+  // build without FMA rounds its way 0.26 mrad past the bound alone (the FMA build stays
+  // inside); 1 mrad is still a tenth of what a cone row that stops holding gives in 4 s.
+  EXPECT_LT(largest, 3.1 + rigid_row_bound(alpha, kDt / 4) + 1e-3);
 }
 
 // Without a cone a spinning limb tumbles through the 180-degree swing again and again, its
