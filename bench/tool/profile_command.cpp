@@ -182,6 +182,7 @@ int profile_command(ProfileOptions o) {
   std::printf("row solves / s   %.3g (ns per row solve %.2f)\n", row_solves / (ms * 1e-3),
               ms * 1e6 / row_solves);
   std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(samples.wait_share));
+  print_serial_share(samples);
   std::printf(
       "joint error      max %.6g m, rms %.6g m after the last step; worst over the run %.6g m\n",
       errors.max, errors.rms, worst_error_run);
@@ -220,6 +221,7 @@ int profile_command(ProfileOptions o) {
                               {"stage_ms", stage_json(stage_median)},
                               {"rows_per_second", row_solves / (ms * 1e-3)},
                               {"barrier_wait_share", median(samples.wait_share)},
+                              {"serial_share", median(samples.serial_share)},
                               {"colors", layout.colors_used},
                               {"overflow_joints", layout.overflow_joints},
                               {"max_joint_error_m", errors.max},
