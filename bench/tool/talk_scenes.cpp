@@ -20,12 +20,17 @@ void add_talk_scene_options(CLI::App& cmd, SceneChoice& c) {
                  "ragdoll: ragdolls of 16 bodies (default 1); vehicle: cars (default 100); "
                  "suspension-bridge: bridges (default 10)")
       ->check(whole_in(1, 10000000));
+  cmd.add_option("--speed", c.vehicle.speed,
+                 "vehicle: the cars' speed, m/s, their wheel motors' target (default 10)")
+      ->check(CLI::Range(0.0, 100.0));
 }
 
 void finish_talk_scene_options(const CLI::App& cmd, SceneChoice& c) {
   if (cmd.count("--count") > 0 && !is_talk_scene(c.scene) && c.scene != "ragdoll")
     throw CLI::ValidationError(
         "--count", "a ragdoll, vehicle or suspension-bridge option, not for scene " + c.scene);
+  if (cmd.count("--speed") > 0 && c.scene != "vehicle")
+    throw CLI::ValidationError("--speed", "a vehicle option, not for scene " + c.scene);
   const bool given = cmd.count("--count") > 0;
   c.ragdoll.count = given ? c.count : 1;
   c.vehicle.cars = given ? c.count : 100;
@@ -94,7 +99,8 @@ SceneRun vehicle_run(World& world, const scenes::VehicleOptions& o) {
             format_number(chassis.linear_velocity.x()) + " m/s (motors' target " +
             format_number(o.speed) + " m/s)\n";
     const scenes::Bounce b = bounce();
-    if (b.hertz == 0.0) return text + "bounce           (needs 200 steps)\n";
+    if (b.hertz == 0.0)
+      return text + "bounce           (none measured: it needs 200 steps and two periods)\n";
     return text + "bounce           " + format_number(b.hertz) + " Hz, damping ratio " +
            format_number(b.damping_ratio) + " (springs: " + format_number(o.hertz) + " Hz, " +
            format_number(o.damping_ratio) + ")\n";
