@@ -147,8 +147,9 @@ std::vector<BuiltScene> built_scenes() {
   zoo.links = 3;
   scenes::RagdollOptions ragdolls;
   ragdolls.count = 2;
-  // Cars on wheel joints (steered, motored, sprung, limited; rails of free wheel joints), a
-  // suspension bridge, and motor joints, rigid and soft, dragging boxes.
+  // Cars on wheel joints (steered, motored, sprung, limited; a scene file holds no contacts,
+  // so here they fall through their ground), a suspension bridge with its cart, and motor
+  // joints, rigid and soft, dragging boxes.
   scenes::VehicleOptions cars;
   cars.cars = 2;
   cars.steering = 0.1;

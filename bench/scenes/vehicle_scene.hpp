@@ -1,13 +1,26 @@
-// Cars on rails: each a chassis on four wheel joints. No contacts exist yet, so each wheel
-// rides on a rail: a second wheel joint, from the static world, whose free travel is along x
-// (no spring), so the wheel rolls along x and spins, its centre at axle height. The rail is a
-// rigid row, a 60 Hz spring on the wheel's mass (WorldSettings::rigid_hertz) in series with
-// the suspension: it lowers the bounce by k_spring / (2 k_rail), 0.8 % for 20 kg wheels. The cars start with their
-// springs unloaded, rolling at `speed`, their wheels spun by the wheel motors at the rolling
-// speed; under gravity each chassis settles g / (2 pi hertz)^2 lower, bouncing at `hertz` with
-// `damping_ratio` (wheel.hpp: the springs' frequency refers to the sprung mass, a quarter of
-// the chassis). Cars stand 4 m apart along z. Used by `softstep profile vehicle` and the wheel
-// joint's tests.
+// Cars on the ground: each a chassis on four wheel joints whose wheels touch a static ground
+// (the plane y = 0) through contacts the scene computes itself each step (vehicle_contacts:
+// a wheel is a sphere on the plane, sphere_contacts.hpp; friction `tyre_friction`), so the
+// wheel motors push the car. The cars start with their springs unloaded and their wheels
+// just touching, rolling at `speed` (or at rest, `start_rolling` false), their motors holding
+// (or driving them up to) the rolling speed; cars stand 4 m apart along z and drive along +x.
+// Used by `softstep profile vehicle`, the wheel joint's tests, and (build_car) the cart that
+// crosses the suspension bridge.
+//
+// What the springs promise (vehicle.promised_*): under gravity the chassis settles by the
+// spring's static deflection m_s g / k = g / (2 pi hertz)^2 (wheel.hpp: the springs'
+// frequency refers to the sprung mass m_s, a quarter of the chassis), and the tyre, the contact
+// spring (WorldSettings::contact, relative to the contact row's effective mass, the wheel's
+// mass m_w: the point is straight below the centre, so the wheel's inertia does not enter),
+// is pressed in by the corner's weight: (m_s + m_w) g / (m_w (2 pi contact hertz)^2), 4.4 mm
+// at the default 30 Hz for 20 kg wheels. Both are exact at rest (the soft step's impulse is
+// then the static force). The tyre in series with the suspension lowers the bounce (the ride
+// rate): how much the reading shows.
+//
+// `on_rails` keeps the scene's first form, from before contacts: each wheel rides on a second,
+// spring-less wheel joint from the world whose free travel is along x. The wheel joint's own
+// tests use it: they hold the joint to its promise (2 Hz whatever the wheel weighs) without
+// the tyre's compliance in series, which a 10 kg wheel on 30 Hz contacts would add.
 #pragma once
 
 #include <array>
@@ -26,9 +39,12 @@ struct VehicleOptions {
   double track = 1.6;           // m, left to right wheel
   double hertz = 2.0;           // suspension
   double damping_ratio = 0.3;
-  double speed = 10.0;  // m/s along +x at the start
+  double speed = 10.0;  // m/s along +x: the wheel motors' target (and the start speed)
+  bool start_rolling = true;    // false: the cars start at rest, their motors drive them
   double motor_torque = 200.0;  // N m per wheel motor, 0: wheels spin freely
-  double steering = 0.0;        // rad, the front wheels (the carriages keep the car on its rail)
+  double steering = 0.0;        // rad, the front wheels
+  double tyre_friction = 1.0;   // the wheel-ground contacts' Coulomb coefficient
+  bool on_rails = false;        // the wheels on rails instead of the ground (see above)
   // Every n-th car (0, n, 2n, ...) gets its suspension as Spring::absolute(k, c) with the k and
   // c the relative spring has on its sprung mass: the same car in N/m. 0: none.
   int absolute_every = 0;
@@ -37,20 +53,37 @@ struct VehicleOptions {
 struct Car {
   BodyId chassis;
   std::array<BodyId, 4> wheels;      // front left, front right, rear left, rear right
-  std::array<JointId, 4> rails;
   std::array<JointId, 4> wheel_joints;
+  std::array<JointId, 4> rails;      // on_rails only
   double start_height = 0.0;  // m, the chassis centre with the springs unloaded
 };
+
+// One car on four wheel joints, its wheels' lowest points at `ground_point` (the point under
+// the car's centre) + (+-wheelbase / 2, 0, +-track / 2), facing +x. Its joints are appended
+// to `joints`.
+Car build_car(World& world, const VehicleOptions& options, const Eigen::Vector3d& ground_point,
+              std::vector<JointId>& joints);
 
 struct VehicleScene {
   BodyId ground;
   std::vector<Car> cars;
   std::vector<JointId> joints;  // every joint
-  // What the springs promise: the chassis rides g / omega^2 below its start height.
-  double promised_sag = 0.0;  // m
+  bool on_rails = false;
+  double wheel_radius = 0.0;
+  double tyre_friction = 0.0;
+  // What the springs and tyres promise for a car at rest (see above), m.
+  double promised_sag = 0.0;              // the spring's travel, m_s g / k
+  double promised_tyre_compression = 0.0;  // (m_s + m_w) g / (m_w omega_contact^2); 0 on rails
+  double promised_ride_height = 0.0;      // the chassis centre: start - the two above
 };
 
 VehicleScene build_vehicle(World& world, const VehicleOptions& options);
+
+// The wheels' contacts with the ground for the world's poses now, in a fixed order (car by
+// car, wheel by wheel), into `out` (cleared first; no manifold for a wheel more than a wheel
+// radius above the ground). Empty on rails.
+void vehicle_contacts(const World& world, const VehicleScene& scene,
+                      std::vector<ContactManifold>& out);
 
 // The frequency (Hz) and damping ratio of a decaying oscillation about `rest`, from its
 // samples every dt: the damped period from upward crossings of rest, the decay from the

@@ -114,6 +114,7 @@ int profile_recording(const ProfileOptions& o) {
   std::printf("  %-22s %8.3f  (median of %ld steps; the slowest %.3f)\n\n", "step", ms,
               report.steps, *std::max_element(samples.step_ms.begin(), samples.step_ms.end()));
   std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(samples.wait_share));
+  print_serial_share(samples);
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(report.state_hash));
 
   if (!o.json_path.empty()) {
@@ -130,6 +131,7 @@ int profile_recording(const ProfileOptions& o) {
                               {"ms_per_step", ms},
                               {"stage_ms", stage_json(stage_median)},
                               {"barrier_wait_share", median(samples.wait_share)},
+                              {"serial_share", median(samples.serial_share)},
                               {"contacts",
                                {{"steps", report.contact_steps},
                                 {"manifolds", report.contact_manifolds},

@@ -49,13 +49,18 @@ struct StepSamples {
   std::vector<double> step_ms;
   std::vector<StageTimes> stage_ms;
   std::vector<double> wait_share;
-  std::vector<int> threads;  // the thread count each step ran on
-  long shared_steps = 0;     // steps on more than one thread
+  std::vector<double> serial_share;  // of the step's time, what ran outside the threads' team
+  std::vector<int> threads;          // the thread count each step ran on
+  long shared_steps = 0;             // steps on more than one thread
   Trace trace;
   // step_ms: the step's time as the caller measured it; start_us: when it started on the
   // trace's clock.
   void add(const StepProfile& profile, double step_ms, double start_us);
 };
+
+// The "serial share" line of `softstep profile`: the median share of a step() call that ran
+// outside the threads' team (StepProfile::serial_ms).
+void print_serial_share(const StepSamples& samples);
 
 // Text made safe inside HTML or SVG: <, > and & escaped.
 std::string markup_text(const std::string& text);

@@ -39,12 +39,13 @@ const char* const kSceneHelp =
     "          dropped in a T-pose from 10 m onto a 1 m rope tied to the pelvis; reports the\n"
     "          worst cone, twist or hinge-limit violation in degrees.\n"
     "  vehicle  --count N cars of 1,200 kg (default 100), each a chassis on four wheel joints\n"
-    "          (2 Hz springs, ratio 0.3, 20 kg wheels, motors at the rolling speed) rolling at\n"
-    "          10 m/s on rails; prints the first car's bounce and ride height against what\n"
-    "          its springs promise.\n"
-    "  suspension-bridge  --count N bridges (default 10) of 21 planks on revolute joints hung\n"
-    "          from two cables of distance joints, a 500 kg load at mid-span; prints the sag\n"
-    "          against the static solution.\n"
+    "          (2 Hz springs, ratio 0.3, 20 kg wheels, motors at the rolling speed) driving at\n"
+    "          10 m/s on the ground through the scene's own wheel-ground contacts; prints the\n"
+    "          first car's bounce and ride height against what its springs and tyres promise.\n"
+    "  suspension-bridge  --count N bridges (default 10) of 22 planks on revolute and ball\n"
+    "          joints hung from two cables of distance joints, each crossed by a 500 kg cart\n"
+    "          on wheel joints (contacts with the planks); prints the sag under the cart at\n"
+    "          mid-span against the static solution, and the time to cross.\n"
     "Joints are rigid unless --hertz gives them springs.";
 
 bool is_recording_file(const std::string& path) {
@@ -162,6 +163,11 @@ std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<Bod
   p.reserve(bodies.size());
   for (BodyId b : bodies) p.push_back(world.body(b).position);
   return p;
+}
+
+void step_scene(World& world, const SceneRun& run, double dt) {
+  if (run.contacts) world.step(dt, run.contacts());
+  else world.step(dt);
 }
 
 WorldSettings scene_settings(const SceneChoice& c) {

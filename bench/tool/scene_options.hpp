@@ -3,6 +3,8 @@
 #pragma once
 
 #include <functional>
+#include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,17 @@ struct SceneChoice {
 // naming it. `choice` must outlive the parse.
 void add_scene_options(CLI::App& command, SceneChoice& choice);
 
+// A scene's own figures for the sweep's CSV, one value each, NaN where the scene has none or
+// the run was too short to measure it.
+struct SceneReadings {
+  static constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  double bounce_hz = kNone;            // vehicle: the first car's bounce
+  double bounce_error = kNone;         // (bounce - the springs' hertz) / the springs' hertz
+  double ride_height_error_m = kNone;  // vehicle: chassis centre - promised ride height
+  double sag_error = kNone;  // suspension-bridge: (sag under the load - static) / static
+  double crossing_s = kNone;           // suspension-bridge: the cart's time from pier to pier
+};
+
 // A built scene: what the reports need to know about it.
 struct SceneRun {
   std::string description;
@@ -73,7 +86,14 @@ struct SceneRun {
   // after every step by after_step and printed at the end; empty when the scene has none.
   std::function<void()> after_step;
   std::function<std::string()> reading;
+  std::function<SceneReadings()> readings;  // the same for the sweep's CSV
+  // The scene's contacts for the world's poses now, from its own narrow phase (vehicle,
+  // suspension-bridge), valid until the next call; empty for scenes without contacts.
+  std::function<std::span<const ContactManifold>()> contacts;
 };
+
+// One step of the scene: with its contacts when it has any.
+void step_scene(World& world, const SceneRun& run, double dt);
 
 // True when the file starts with a recording's signature (a scene file is JSON).
 bool is_recording_file(const std::string& path);

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "softstep/recording.hpp"
@@ -62,11 +63,16 @@ void SweptScene::run(const std::function<void(WorldSettings&)>& knobs,
   if (hooks.start) hooks.start(world, run);
   for (long i = 1; i <= steps_; ++i) {
     if (hooks.before_step) hooks.before_step(world, i);
+    const std::span<const ContactManifold> contacts =
+        run.contacts ? run.contacts() : std::span<const ContactManifold>();
     const auto t0 = std::chrono::steady_clock::now();
-    world.step(kSceneDt);
+    if (run.contacts) world.step(kSceneDt, contacts);
+    else world.step(kSceneDt);
     const double ms = elapsed_ms(t0);
+    if (run.after_step) run.after_step();
     if (hooks.after_step) hooks.after_step(world, run, i, ms);
   }
+  if (hooks.finish) hooks.finish(world, run);
 }
 
 void SweptScene::replay(const std::function<void(WorldSettings&)>& knobs,
@@ -89,6 +95,7 @@ void SweptScene::replay(const std::function<void(WorldSettings&)>& knobs,
     run.bodies = dynamic_bodies(world);
     run.joints = world.joint_ids();
     if (hooks.after_step) hooks.after_step(world, run, step, ms);
+    if (step == steps_ && hooks.finish) hooks.finish(world, run);
   };
   replay_recording_bytes(recording_, choice_.scene, replay);
 }

@@ -1,5 +1,5 @@
 // What softstep sweep runs once per setting: a scene (built in, or a scene file) built and
-// stepped at 1/60 s, or a recording's calls (steps with their dt and contacts, creations,
+// stepped at 1/60 s with its own contacts and bookkeeping (SceneRun), or a recording's calls (steps with their dt and contacts, creations,
 // destructions, setters) replayed unchecked, since the swept settings change what its steps
 // compute. Either way the sweep sees the same hooks around each step.
 #pragma once
@@ -14,9 +14,12 @@ namespace softstep::tool {
 struct SweepRunHooks {
   // Once, on the built or loaded world at the run's settings, before its first step.
   std::function<void(World& world, SceneRun& run)> start;
-  // Around each step (numbered from 1); step_ms is the World::step call alone.
+  // Around each step (numbered from 1); step_ms is the World::step call alone (not the
+  // scene's own collision detection or bookkeeping, SceneRun::contacts and after_step).
   std::function<void(World& world, long step)> before_step;
   std::function<void(World& world, SceneRun& run, long step, double step_ms)> after_step;
+  // Once, after the last step's after_step (the scene's own readings).
+  std::function<void(World& world, SceneRun& run)> finish;
 };
 
 class SweptScene {

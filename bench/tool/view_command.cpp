@@ -49,7 +49,8 @@ int view_command(const ViewOptions& o) {
   {
     ProgressBar bar("view", o.steps);
     for (long i = 1; i <= o.steps; ++i) {
-      world.step(dt);
+      step_scene(world, run, dt);
+      if (run.after_step) run.after_step();
       recorder.after_step(world, dt);
       bar.update(i);
     }

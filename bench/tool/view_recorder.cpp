@@ -12,6 +12,22 @@ namespace softstep::tool {
 
 namespace {
 
+// The two bodies of a joint of any type (the page draws a line between them).
+std::pair<BodyId, BodyId> joint_bodies(const World& world, JointId j) {
+  const auto ends = [&](auto def) { return std::pair{def.body_a, def.body_b}; };
+  switch (world.joint_type(j)) {
+    case JointType::Ball: return ends(world.joint_def<BallJointDef>(j));
+    case JointType::Distance: return ends(world.joint_def<DistanceJointDef>(j));
+    case JointType::Revolute: return ends(world.joint_def<RevoluteJointDef>(j));
+    case JointType::Prismatic: return ends(world.joint_def<PrismaticJointDef>(j));
+    case JointType::Weld: return ends(world.joint_def<WeldJointDef>(j));
+    case JointType::SwingTwist: return ends(world.joint_def<SwingTwistJointDef>(j));
+    case JointType::Wheel: return ends(world.joint_def<WheelJointDef>(j));
+    case JointType::Motor: return ends(world.joint_def<MotorJointDef>(j));
+  }
+  return {};
+}
+
 std::size_t stride(std::size_t count, std::size_t cap) {
   return cap == 0 ? count + 1 : std::max<std::size_t>(1, (count + cap - 1) / cap);
 }
@@ -52,10 +68,7 @@ ViewRecorder::ViewRecorder(const World& world, std::string title, const ViewLimi
   const std::size_t joint_stride = stride(all_joints.size(), limits.max_joints);
   for (std::size_t i = 0; i < all_joints.size(); i += joint_stride) {
     const JointId j = all_joints[i];
-    const auto [a, b] =
-        world.joint_type(j) == JointType::Ball
-            ? std::pair{world.ball_joint(j).body_a, world.ball_joint(j).body_b}
-            : std::pair{world.distance_joint(j).body_a, world.distance_joint(j).body_b};
+    const auto [a, b] = joint_bodies(world, j);
     joints_.push_back(j);
     joint_ends_.push_back(draw(a));
     joint_ends_.push_back(draw(b));

@@ -264,6 +264,7 @@ void wake_touched(World::Impl& w, std::span<const ContactManifold> contacts) {
 
 void World::step(double dt, std::span<const ContactManifold> contacts) {
   Impl& w = *impl_;
+  const auto call_start = std::chrono::steady_clock::now();
   if (!(std::isfinite(dt) && dt > 0.0)) {
     validation::reject("step", "dt", validation::format(dt), "must be finite and > 0 s");
   }
@@ -443,10 +444,11 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr, &*barrier});
     }
   }
-  if (choice.by_policy) w.thread_policy.record(since_start() * 1e-3, fresh_content);
+  const double team_ms = since_start() * 1e-3;
+  if (choice.by_policy) w.thread_policy.record(team_ms, fresh_content);
   if (profiling) {
     StepProfile& p = w.profile;
-    p.step_ms = since_start() * 1e-3 + contact_solver.layout().load_ms;
+    p.step_ms = team_ms + contact_solver.layout().load_ms;
     p.threads = threads;
     p.thread_switches = w.thread_policy.switches();
     p.contact_load_ms = contact_solver.layout().load_ms;
@@ -464,6 +466,12 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   w.clear_forces();
   w.update_sleep(dt);
   if (w.recorder) w.recorder->step(dt, contacts, motion_hash());
+  if (profiling) {
+    const double call_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - call_start)
+            .count();
+    w.profile.serial_ms = std::max(0.0, call_ms - team_ms);
+  }
 }
 
 void World::set_task_callbacks(const TaskCallbacks& callbacks) {

@@ -332,6 +332,7 @@ TEST(AbsoluteSpring, SceneFileAndRecordingRoundTrip) {
   scenes::VehicleOptions o;
   o.cars = 2;
   o.absolute_every = 2;  // car 0 absolute, car 1 relative
+  o.on_rails = true;     // stepped without contacts
   const scenes::VehicleScene scene = scenes::build_vehicle(world, o);
   const BodyId box = test::dynamic_body(world, {0.0, 3.0, 9.0}, 2.0, Eigen::Matrix3d::Identity() * 0.1);
   auto hinge = scenes::joint_at<RevoluteJointDef>(world, scene.ground, box, {0.0, 3.0, 8.5},

@@ -43,6 +43,11 @@ struct StepProfile {
   // Of step_ms: matching the step's contacts with the last step's, colouring and packing them
   // (softstep's part of taking contacts; the caller's collision detection is outside the step).
   double contact_load_ms = 0.0;
+  // Of the whole step() call, the time outside the threads' team, which one thread runs
+  // whatever the thread count: checking the input, the plan, matching and storing contacts,
+  // the geometric-inertia sums, sleep bookkeeping and recording. Its share of the call bounds
+  // what a second thread can win (Amdahl).
+  double serial_ms = 0.0;
 };
 
 }  // namespace softstep

@@ -25,18 +25,18 @@ struct BallKind {
   static constexpr bool relaxes(std::size_t v) { return simd::ball_needs_relax(variants[v]); }
 
   template <class L, std::size_t V>
-  static void prepare(Group<simd::kWidth<L>>& g, const simd::BodyArrays&,
-                      const simd::SubstepContext& ctx, std::uint32_t) {
+  static SOFTSTEP_INLINE void prepare(Group<simd::kWidth<L>>& g, const simd::BodyArrays&,
+                                      const simd::SubstepContext& ctx, std::uint32_t) {
     simd::prepare_ball_joints<L, variants[V]>(g, ctx);
   }
   template <class L, std::size_t V>
-  static void warm_start(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,
-                         const simd::SubstepContext&, std::uint32_t) {
+  static SOFTSTEP_INLINE void warm_start(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,
+                                         const simd::SubstepContext&, std::uint32_t) {
     simd::warm_start_ball_joints<L, variants[V]>(g, b);
   }
   template <class L, std::size_t V, bool kUseBias>
-  static void solve(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,
-                    const simd::SubstepContext&, std::uint32_t) {
+  static SOFTSTEP_INLINE void solve(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,
+                                    const simd::SubstepContext&, std::uint32_t) {
     simd::solve_ball_joints<L, kUseBias, variants[V]>(g, b);
   }
 

@@ -142,32 +142,32 @@ KindKernels<Kind, W> kind_kernels();
 // kernel branches on the signature once per group instead of being compiled per variant. Its
 // passes are simd::prepare_<name>_joints<L>(g, ctx, sig), warm_start_<name>_joints<L>(g, b, sig)
 // and solve_<name>_joints<L, kUseBias>(g, b, ctx, sig).
-#define SOFTSTEP_SIGNATURE_KIND_PASSES(name)                                      \
-  static constexpr std::array<int, 1> variants{0};                                \
-  static constexpr bool solves(std::size_t) {                                     \
-    return true;                                                                  \
-  }                                                                               \
-  static constexpr bool relaxes(std::size_t) {                                    \
-    return true;                                                                  \
-  }                                                                               \
-  static std::uint8_t variant(const JointSlot&, bool) {                           \
-    return 0;                                                                     \
-  }                                                                               \
-  template <class L, std::size_t>                                                 \
-  static void prepare(Group<simd::kWidth<L>>& g, const simd::BodyArrays&,         \
-                      const simd::SubstepContext& ctx, std::uint32_t signature) { \
-    simd::prepare_##name##_joints<L>(g, ctx, signature);                          \
-  }                                                                               \
-  template <class L, std::size_t>                                                 \
-  static void warm_start(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,    \
-                         const simd::SubstepContext&, std::uint32_t signature) {  \
-    simd::warm_start_##name##_joints<L>(g, b, signature);                         \
-  }                                                                               \
-  template <class L, std::size_t, bool kUseBias>                                  \
-  static void solve(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,         \
-                    const simd::SubstepContext& ctx, std::uint32_t signature) {   \
-    simd::solve_##name##_joints<L, kUseBias>(g, b, ctx, signature);               \
-  }                                                                               \
+#define SOFTSTEP_SIGNATURE_KIND_PASSES(name)                                                      \
+  static constexpr std::array<int, 1> variants{0};                                                \
+  static constexpr bool solves(std::size_t) {                                                     \
+    return true;                                                                                  \
+  }                                                                                               \
+  static constexpr bool relaxes(std::size_t) {                                                    \
+    return true;                                                                                  \
+  }                                                                                               \
+  static std::uint8_t variant(const JointSlot&, bool) {                                           \
+    return 0;                                                                                     \
+  }                                                                                               \
+  template <class L, std::size_t>                                                                 \
+  static SOFTSTEP_INLINE void prepare(Group<simd::kWidth<L>>& g, const simd::BodyArrays&,         \
+                                      const simd::SubstepContext& ctx, std::uint32_t signature) { \
+    simd::prepare_##name##_joints<L>(g, ctx, signature);                                          \
+  }                                                                                               \
+  template <class L, std::size_t>                                                                 \
+  static SOFTSTEP_INLINE void warm_start(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,    \
+                                         const simd::SubstepContext&, std::uint32_t signature) {  \
+    simd::warm_start_##name##_joints<L>(g, b, signature);                                         \
+  }                                                                                               \
+  template <class L, std::size_t, bool kUseBias>                                                  \
+  static SOFTSTEP_INLINE void solve(Group<simd::kWidth<L>>& g, const simd::BodyArrays& b,         \
+                                    const simd::SubstepContext& ctx, std::uint32_t signature) {   \
+    simd::solve_##name##_joints<L, kUseBias>(g, b, ctx, signature);                               \
+  }                                                                                               \
   static_assert(true, "")
 
 }  // namespace softstep

@@ -82,13 +82,6 @@ SOFTSTEP_INLINE JointBodies<L> gather_contact(const ContactLanes<kWidth<L>>& g,
           {}};
 }
 
-template <class L>
-SOFTSTEP_INLINE void scatter_contact(const ContactLanes<kWidth<L>>& g, const BodyArrays& bodies,
-                                     const JointBodies<L>& j) {
-  scatter_velocity(bodies.velocity, g.body_a, j.a);
-  scatter_velocity(bodies.velocity, g.body_b, j.b);
-}
-
 // The manifold's normal and tangents.
 template <class L>
 struct ContactFrame {
@@ -154,7 +147,7 @@ SOFTSTEP_INLINE void warm_start_contacts(ContactLanes<kWidth<L>>& g, const BodyA
   if constexpr ((kSignature & kContactRolling) != 0) {
     apply_angular_impulse(j, load3<L>(g.rolling_impulse));
   }
-  scatter_contact<L>(g, bodies, j);
+  scatter_joint(g, bodies, j);
 }
 
 // The normal row's impulse change at one point (see the top of the file for the modes).
@@ -238,7 +231,7 @@ SOFTSTEP_INLINE void solve_contacts(ContactLanes<kWidth<L>>& g, const BodyArrays
     store3<L>(g.rolling_impulse, next);
     apply_angular_impulse(j, next - old);
   }
-  scatter_contact<L>(g, bodies, j);
+  scatter_joint(g, bodies, j);
 }
 
 // After the sub-steps: the normal speed of each point that closed faster than the threshold
@@ -262,7 +255,7 @@ SOFTSTEP_INLINE void restitute_contacts(ContactLanes<kWidth<L>>& g, const BodyAr
     store_lanes(p.normal_impulse, accumulated + dp);
     apply_impulse(j, dp * n);
   }
-  scatter_contact<L>(g, bodies, j);
+  scatter_joint(g, bodies, j);
 }
 
 }  // namespace softstep::simd

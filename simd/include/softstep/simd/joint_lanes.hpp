@@ -127,8 +127,10 @@ SOFTSTEP_INLINE JointBodies<L> gather_joint(const AnchorLanes<kWidth<L>>& g,
   return j;
 }
 
-template <class L>
-SOFTSTEP_INLINE void scatter_joint(const AnchorLanes<kWidth<L>>& g, const BodyArrays& bodies,
+// Writes both bodies' velocities back: any lane group naming body_a and body_b (every joint
+// kind's lanes, and the contacts').
+template <class L, class Lanes>
+SOFTSTEP_INLINE void scatter_joint(const Lanes& g, const BodyArrays& bodies,
                                    const JointBodies<L>& j) {
   scatter_velocity(bodies.velocity, g.body_a, j.a);
   scatter_velocity(bodies.velocity, g.body_b, j.b);
