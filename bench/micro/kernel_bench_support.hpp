@@ -124,8 +124,13 @@ Packed<Group, W> pack_chains(int total_links, int chain_length) {
   return p;
 }
 
-const SubstepContext kContext{1.0f / 240.0f, 240.0f, make_softness(60.0f, 2.0f, 1.0f / 240.0f),
-                              3.0f, 1e4f, 0.25f * 3.14159265f * 240.0f};
+const SubstepContext kContext{1.0f / 240.0f,
+                              240.0f,
+                              make_softness(60.0f, 2.0f, 1.0f / 240.0f),
+                              make_softness(120.0f, 2.0f, 1.0f / 240.0f),
+                              3.0f,
+                              1e4f,
+                              0.25f * 3.14159265f * 240.0f};
 
 enum class Stage { Prepare, WarmStart, Solve, Relax };
 

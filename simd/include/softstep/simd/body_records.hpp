@@ -261,24 +261,55 @@ struct BodyLanes {
   MaskOf<L> movable;  // inverse mass > 0: only these lanes are written back
 };
 
+// Fills `out` field by field from the transposed rows. Built by value and then copied into a
+// kernel's JointBodies (which the compiler keeps in memory: a kernel has more live batches
+// than registers), a BodyLanes went through a block copy of its 21 batches per body (rep movs),
+// and a zero-filled JointBodies through a memset of all 51: most of the fixed cost of a cheap
+// kernel at 8 lanes (the wheel's locks).
+template <class L>
+SOFTSTEP_INLINE void gather_body_into(BodyLanes<L>& out, const VelocityRecord* vel,
+                                      const DeltaRecord* delta, const MassRecord* mass,
+                                      const std::int32_t* index) {
+  const Rows8<L> a = gather_rows<L>(vel, index);
+  out.v = {a.r[0], a.r[1], a.r[2]};
+  out.w = {a.r[3], a.r[4], a.r[5]};
+  const Rows8<L> d = gather_rows<L>(delta, index);
+  out.dq = {d.r[3], d.r[4], d.r[5], d.r[6]};
+  out.dp = {d.r[0], d.r[1], d.r[2]};
+  const MassLanes<L> m = gather_mass<L>(mass, index);
+  out.inv_mass = m.inv_mass;
+  out.inv_inertia = m.inv_inertia;
+  out.movable = m.inv_mass > L(0.0f);
+}
+
 template <class L>
 SOFTSTEP_INLINE BodyLanes<L> gather_body(const VelocityRecord* vel, const DeltaRecord* delta,
                                          const MassRecord* mass, const std::int32_t* index) {
-  const Rows8<L> a = gather_rows<L>(vel, index);
-  const Rows8<L> d = gather_rows<L>(delta, index);
-  const MassLanes<L> m = gather_mass<L>(mass, index);
-  return {{a.r[0], a.r[1], a.r[2]},
-          {a.r[3], a.r[4], a.r[5]},
-          {d.r[3], d.r[4], d.r[5], d.r[6]},
-          {d.r[0], d.r[1], d.r[2]},
-          m.inv_mass,
-          m.inv_inertia,
-          m.inv_mass > L(0.0f)};
+  BodyLanes<L> b;
+  gather_body_into(b, vel, delta, mass, index);
+  return b;
 }
 
 template <class L>
 SOFTSTEP_INLINE void scatter_velocity(VelocityRecord* vel, const std::int32_t* index,
                                       const BodyLanes<L>& b) {
+#if defined(__AVX__)
+  if constexpr (detail::kIsAvxBatch<L>) {
+    // The rows straight into registers: a Rows8 aggregate of batches copied from a body kept
+    // in memory was copied in 8-byte pieces, and reading it back as whole rows stalled on
+    // store forwarding.
+    __m256 r[8] = {b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, _mm256_setzero_ps(),
+                   _mm256_setzero_ps()};
+    detail::transpose8(r);
+    unsigned mask = static_cast<unsigned>(_mm256_movemask_ps(b.movable));
+    while (mask != 0) {
+      const int i = __builtin_ctz(mask);
+      mask &= mask - 1;
+      _mm256_store_ps(reinterpret_cast<float*>(vel + index[i]), r[i]);
+    }
+    return;
+  }
+#endif
   const Rows8<L> rows{{b.v.x, b.v.y, b.v.z, b.w.x, b.w.y, b.w.z, L(0.0f), L(0.0f)}};
   scatter_rows<L>(vel, index, rows, b.movable);
 }

@@ -37,7 +37,7 @@ SOFTSTEP_INLINE void solve_limit_row(JointBodies<L>& j, const Vec3<L>& n, const 
                                      float* accumulated_lanes, const SubstepContext& ctx) {
   const L cdot = sign * dot(n, relative_velocity(j));
   const L accumulated = load<L>(accumulated_lanes);
-  L dp = limit_row_impulse<L, kUseBias>(cdot, c, k, axial, accumulated, ctx);
+  L dp = limit_row_impulse<L, kUseBias>(cdot, c, k, axial, accumulated, ctx, ctx.rigid);
   if constexpr (kPerLaneEnable) dp = select(load<L>(enabled) > L(0.0f), dp, L(0.0f));
   store_lanes(accumulated_lanes, accumulated + dp);
   apply_impulse(j, (sign * dp) * n);

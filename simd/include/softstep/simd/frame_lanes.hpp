@@ -124,7 +124,7 @@ SOFTSTEP_INLINE void solve_axis_controls(AxisControlLanes<kWidth<L>>& g, std::ui
     {
       const L accumulated = load<L>(g.lower_impulse);
       const L dp = limit_row_impulse<L, kUseBias>(axis.cdot(), position + load<L>(g.lower_gap),
-                                                  axis.k, axis.m_eff, accumulated, ctx);
+                                                  axis.k, axis.m_eff, accumulated, ctx, ctx.limit);
       store_lanes(g.lower_impulse, accumulated + dp);
       axis.apply(dp);
     }
@@ -132,7 +132,7 @@ SOFTSTEP_INLINE void solve_axis_controls(AxisControlLanes<kWidth<L>>& g, std::ui
       const L accumulated = load<L>(g.upper_impulse);
       const L dp =
           limit_row_impulse<L, kUseBias>(L(0.0f) - axis.cdot(), load<L>(g.upper_gap) - position,
-                                         axis.k, axis.m_eff, accumulated, ctx);
+                                         axis.k, axis.m_eff, accumulated, ctx, ctx.limit);
       store_lanes(g.upper_impulse, accumulated + dp);
       axis.apply(L(0.0f) - dp);
     }

@@ -116,11 +116,9 @@ struct JointBodies {
 template <class L>
 SOFTSTEP_INLINE JointBodies<L> gather_joint(const AnchorLanes<kWidth<L>>& g,
                                             const BodyArrays& bodies) {
-  JointBodies<L> j{gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_a),
-                   gather_body<L>(bodies.velocity, bodies.delta, bodies.mass, g.body_b),
-                   {},
-                   {},
-                   {}};
+  JointBodies<L> j;  // filled in place (gather_body_into says why)
+  gather_body_into(j.a, bodies.velocity, bodies.delta, bodies.mass, g.body_a);
+  gather_body_into(j.b, bodies.velocity, bodies.delta, bodies.mass, g.body_b);
   j.r_a = rotate(j.a.dq, load3<L>(g.r_a));
   j.r_b = rotate(j.b.dq, load3<L>(g.r_b));
   j.separation = load3<L>(g.center_delta) + (j.b.dp - j.a.dp) + (j.r_b - j.r_a);

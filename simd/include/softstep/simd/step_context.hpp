@@ -20,6 +20,10 @@ struct SubstepContext {
   // Softness of rigid rows while solving (rigid rows use none while relaxing): a stiff spring
   // whose frequency is capped by the sub-step rate so it cannot overshoot.
   Softness<float> rigid;
+  // Softness of a joint's violated axis or angle limit while solving (speculative while
+  // ahead, no softness while relaxing): twice the rigid rows' frequency, capped at half the
+  // sub-step rate (step.cpp, limit_solve_hertz, says why).
+  Softness<float> limit;
   // Bound on the speed at which a rigid row corrects position error, m/s: a joint created far
   // apart is pulled together at this speed instead of launching its bodies.
   float max_correction_speed;

@@ -109,7 +109,8 @@ SOFTSTEP_INLINE void solve_angular_limit(JointBodies<L>& j, const Vec3<L>& axis,
                                          float (&impulse)[kWidth<L>], const SubstepContext& ctx) {
   const AngularAxis<L> row = angular_axis(j, axis);
   const L accumulated = load<L>(impulse);
-  const L dp = limit_row_impulse<L, kUseBias>(row.cdot, gap, row.k, row.m_eff, accumulated, ctx);
+  const L dp = limit_row_impulse<L, kUseBias>(row.cdot, gap, row.k, row.m_eff, accumulated,
+                                              ctx, ctx.limit);
   store_lanes(impulse, accumulated + dp);
   apply_angular_impulse(j, dp * axis);
 }

@@ -87,10 +87,13 @@ SOFTSTEP_INLINE L bilateral_row_impulse(const L& cdot, const L& c, const L& k, c
 
 // One unilateral limit row (C >= 0 wanted, accumulated impulse >= 0). Ahead of contact
 // (C > 0) it is speculative: the gap may close within one sub-step but not beyond, in solve
-// and relax alike. Violated, it is a rigid row whose push is bounded by max_correction_speed.
+// and relax alike. Violated, it is a stiff row of softness `violated` (ctx.rigid for a length
+// limit, ctx.limit for a joint's axis and angle limits) whose push is bounded by
+// max_correction_speed.
 template <class L, bool kUseBias>
 SOFTSTEP_INLINE L limit_row_impulse(const L& cdot, const L& c, const L& k, const L& m_eff,
-                                    const L& accumulated, const SubstepContext& ctx) {
+                                    const L& accumulated, const SubstepContext& ctx,
+                                    const Softness<float>& violated) {
   const auto ahead = c > L(0.0f);
   L bias = select(ahead, c * L(ctx.inv_h), L(0.0f));
   L mass_scale(1.0f);
@@ -98,13 +101,13 @@ SOFTSTEP_INLINE L limit_row_impulse(const L& cdot, const L& c, const L& k, const
   if constexpr (kUseBias) {
     // Only the pushing direction is bounded: bias_rate C + gamma' P >= -max_correction_speed
     // (see bounded_bias for why the sum and not the bias alone).
-    const L fed_back = L(ctx.rigid.feedback) * k * accumulated;
+    const L fed_back = L(violated.feedback) * k * accumulated;
     const L rigid_bias =
-        max_lanes(L(ctx.rigid.bias_rate) * c + fed_back, L(0.0f) - L(ctx.max_correction_speed)) -
+        max_lanes(L(violated.bias_rate) * c + fed_back, L(0.0f) - L(ctx.max_correction_speed)) -
         fed_back;
     bias = select(ahead, bias, rigid_bias);
-    mass_scale = select(ahead, mass_scale, L(ctx.rigid.mass_scale));
-    impulse_scale = select(ahead, impulse_scale, L(ctx.rigid.impulse_scale));
+    mass_scale = select(ahead, mass_scale, L(violated.mass_scale));
+    impulse_scale = select(ahead, impulse_scale, L(violated.impulse_scale));
   }
   const L raw =
       fmadd(L(0.0f) - mass_scale * m_eff, cdot + bias, L(0.0f) - impulse_scale * accumulated);
