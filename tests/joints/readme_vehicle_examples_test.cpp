@@ -1,9 +1,10 @@
-// The README's wheel and motor-joint examples ("Cars, bridges, dragging"), cut out of README.md at
+// The README's wheel, motor-joint and bridge examples ("Cars, bridges, dragging"), cut out of README.md at
 // configure time (tests/CMakeLists.txt) and compiled here, so that the README's code cannot rot.
 // Each runs in a small world and is held to what the README says it does.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "softstep/softstep.hpp"
 
@@ -78,6 +79,31 @@ TEST(Readme, MotorExampleDragsABodyToTheMouse) {
   // 500 N on 10 kg over at most 2 m: no faster than sqrt(2 a d) = sqrt(2 * 50 * 2) = 14.1 m/s.
   EXPECT_LT(fastest, std::sqrt(2.0 * 50.0 * 2.0));
   EXPECT_GT(fastest, 0.5);
+}
+
+// The bridge hangs from its ropes: each plank is held at its centre, so the ropes carry the
+// whole deck (16 x 20 kg x 9.81 = 3,139 N; the hinges and piers only what the ropes' and hinges'
+// own compliance shares out, a few percent) and the deck stays level at the piers' height.
+TEST(Readme, BridgeExampleHangsTheDeckFromItsRopes) {
+  WorldSettings settings;
+  settings.sleeping = false;
+  World world(settings);
+  {
+#include "readme_examples/bridge_example.inc"
+    ASSERT_EQ(ropes.size(), 16u);
+    for (int i = 0; i < 180; ++i) world.step(kDt);
+    double carried = 0.0;
+    for (const JointId rope : ropes) {
+      const double up = world.joint_reading(rope).force.y();
+      EXPECT_GT(up, 0.5 * 20.0 * 9.81);  // no rope slack: each holds its plank
+      carried += up;
+    }
+    EXPECT_NEAR(carried, 16 * 20.0 * 9.81, 0.05 * 16 * 20.0 * 9.81);
+  }
+  for (const BodyId id : world.body_ids()) {
+    if (world.body(id).type != BodyType::Dynamic) continue;
+    EXPECT_NEAR(world.body(id).position.y(), 0.0, 0.01);
+  }
 }
 
 }  // namespace
