@@ -52,6 +52,8 @@ void contacts(std::string_view call, const World::Impl& w,
     in_range(call, at + ".rolling_resistance", m.rolling_resistance, 0.0, kMaxMagnitude);
     in_range(call, at + ".tangent_speed.x", m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude);
     in_range(call, at + ".tangent_speed.y", m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude);
+    in_range(call, at + ".radius_a", m.radius_a, 0.0, kMaxMagnitude);
+    in_range(call, at + ".radius_b", m.radius_b, 0.0, kMaxMagnitude);
     for (int k = 0; k < m.point_count; ++k) {
       const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
       const std::string pt = at + ".points[" + std::to_string(k) + "]";
