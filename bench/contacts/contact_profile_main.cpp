@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     twin->start_recording(overhead_path);
   }
 
-  std::vector<double> collision_ms, step_ms, wall_ms, load_ms;
+  std::vector<double> collision_ms, step_ms, wall_ms, load_ms, serial_ms;
   std::vector<std::array<double, softstep::kStageCount>> stage_ms;
   std::size_t manifolds = 0, points = 0;
   for (int i = 0; i < steps; ++i) {
@@ -99,6 +99,7 @@ int main(int argc, char** argv) {
     const softstep::StepProfile& p = world.last_step_profile();
     step_ms.push_back(p.step_ms);
     load_ms.push_back(p.contact_load_ms);
+    serial_ms.push_back(p.serial_ms);
     stage_ms.push_back(p.stage_ms);
     manifolds = contacts.size();
     points = 0;
@@ -127,6 +128,9 @@ int main(int argc, char** argv) {
   std::printf("median ms/step   collision (Bullet, the user's) %.3f | softstep step %.3f\n",
               median(collision_ms), median(step_ms));
   std::printf("  softstep parts contact load (match, colour, pack) %.3f\n", median(load_ms));
+  std::printf("  serial         %.3f (of the call, on one thread: checks, contact load and store, "
+              "plan, sleep)\n",
+              median(serial_ms));
   // The call as the caller sees it: the step plus, with --record, writing its contacts.
   std::printf("  step() call    %.3f (wall, around world.step%s)\n", median(wall_ms),
               record_path.empty() ? "" : ", recording included");

@@ -1,6 +1,7 @@
 #include "contacts/contact_validation.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <unordered_set>
 
@@ -24,6 +25,85 @@ void in_range(std::string_view call, const std::string& field, double value, dou
   if (value < low || value > high) reject(call, field, format(value), bounded("must be", low, high));
 }
 
+bool body_alive(const World::Impl& w, BodyId id) {
+  return id.index < w.bodies.size() && w.bodies[id.index].alive &&
+         w.bodies[id.index].generation == id.generation;
+}
+
+bool within(double value, double low, double high) {
+  return std::isfinite(value) && value >= low && value <= high;
+}
+
+// The rules of describe_failure as plain comparisons, without text: a step's manifolds are
+// valid in practice, and naming each field up front (a string per field and point) cost more
+// than matching and packing the contacts (the 820-box pyramid: about half of step()).
+bool passes(const World::Impl& w, const ContactManifold& m) {
+  if (!body_alive(w, m.body_a) || !body_alive(w, m.body_b) || m.body_a.index == m.body_b.index)
+    return false;
+  if (!m.normal.allFinite() || std::abs(m.normal.norm() - 1.0) > kUnitTolerance) return false;
+  if (m.point_count < 1 || m.point_count > kMaxContactPoints) return false;
+  if (!within(m.friction, 0.0, kMaxMagnitude) || !within(m.restitution, 0.0, 1.0) ||
+      !within(m.rolling_resistance, 0.0, kMaxMagnitude) ||
+      !within(m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude) ||
+      !within(m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude) ||
+      !within(m.radius_a, 0.0, kMaxMagnitude) || !within(m.radius_b, 0.0, kMaxMagnitude)) {
+    return false;
+  }
+  for (int k = 0; k < m.point_count; ++k) {
+    const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
+    if (!p.anchor_a.allFinite() || !p.anchor_b.allFinite() ||
+        !within(p.separation, -kMaxMagnitude, kMaxMagnitude)) {
+      return false;
+    }
+    for (int earlier = 0; earlier < k; ++earlier) {
+      if (m.points[static_cast<std::size_t>(earlier)].feature_id == p.feature_id) return false;
+    }
+  }
+  return true;
+}
+
+// Rejects manifold i naming the first field that breaks a rule.
+[[noreturn]] void describe_failure(std::string_view call, const World::Impl& w,
+                                   const ContactManifold& m, std::size_t i) {
+  const std::string at = "contacts[" + std::to_string(i) + "]";
+  const std::uint32_t a = body_slot(w, call, at + ".body_a", m.body_a);
+  const std::uint32_t b = body_slot(w, call, at + ".body_b", m.body_b);
+  if (a == b) {
+    reject(call, at + ".body_b", "BodyId{" + std::to_string(b) + "}",
+           "a body cannot touch itself (body_a == body_b)");
+  }
+  finite(call, at + ".normal", m.normal);
+  if (std::abs(m.normal.norm() - 1.0) > kUnitTolerance) {
+    reject(call, at + ".normal", format(m.normal), "must be a unit vector (from A to B)");
+  }
+  if (m.point_count < 1 || m.point_count > kMaxContactPoints) {
+    reject(call, at + ".point_count", std::to_string(m.point_count),
+           "must be in [1, " + std::to_string(kMaxContactPoints) + "]");
+  }
+  in_range(call, at + ".friction", m.friction, 0.0, kMaxMagnitude);
+  in_range(call, at + ".restitution", m.restitution, 0.0, 1.0);
+  in_range(call, at + ".rolling_resistance", m.rolling_resistance, 0.0, kMaxMagnitude);
+  in_range(call, at + ".tangent_speed.x", m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude);
+  in_range(call, at + ".tangent_speed.y", m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude);
+  in_range(call, at + ".radius_a", m.radius_a, 0.0, kMaxMagnitude);
+  in_range(call, at + ".radius_b", m.radius_b, 0.0, kMaxMagnitude);
+  for (int k = 0; k < m.point_count; ++k) {
+    const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
+    const std::string pt = at + ".points[" + std::to_string(k) + "]";
+    finite(call, pt + ".anchor_a", p.anchor_a);
+    finite(call, pt + ".anchor_b", p.anchor_b);
+    in_range(call, pt + ".separation", p.separation, -kMaxMagnitude, kMaxMagnitude);
+    for (int earlier = 0; earlier < k; ++earlier) {
+      if (m.points[static_cast<std::size_t>(earlier)].feature_id == p.feature_id) {
+        reject(call, pt + ".feature_id", std::to_string(p.feature_id),
+               "repeats points[" + std::to_string(earlier) +
+                   "]'s: feature ids tell a manifold's points apart");
+      }
+    }
+  }
+  throw std::logic_error("contact validation: passes() and describe_failure() disagree on " + at);
+}
+
 }  // namespace
 
 void contacts(std::string_view call, const World::Impl& w,
@@ -32,44 +112,9 @@ void contacts(std::string_view call, const World::Impl& w,
   seen.reserve(manifolds.size());
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
     const ContactManifold& m = manifolds[i];
-    const std::string at = "contacts[" + std::to_string(i) + "]";
-    const std::uint32_t a = body_slot(w, call, at + ".body_a", m.body_a);
-    const std::uint32_t b = body_slot(w, call, at + ".body_b", m.body_b);
-    if (a == b) {
-      reject(call, at + ".body_b", "BodyId{" + std::to_string(b) + "}",
-             "a body cannot touch itself (body_a == body_b)");
-    }
-    finite(call, at + ".normal", m.normal);
-    if (std::abs(m.normal.norm() - 1.0) > kUnitTolerance) {
-      reject(call, at + ".normal", format(m.normal), "must be a unit vector (from A to B)");
-    }
-    if (m.point_count < 1 || m.point_count > kMaxContactPoints) {
-      reject(call, at + ".point_count", std::to_string(m.point_count),
-             "must be in [1, " + std::to_string(kMaxContactPoints) + "]");
-    }
-    in_range(call, at + ".friction", m.friction, 0.0, kMaxMagnitude);
-    in_range(call, at + ".restitution", m.restitution, 0.0, 1.0);
-    in_range(call, at + ".rolling_resistance", m.rolling_resistance, 0.0, kMaxMagnitude);
-    in_range(call, at + ".tangent_speed.x", m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude);
-    in_range(call, at + ".tangent_speed.y", m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude);
-    in_range(call, at + ".radius_a", m.radius_a, 0.0, kMaxMagnitude);
-    in_range(call, at + ".radius_b", m.radius_b, 0.0, kMaxMagnitude);
-    for (int k = 0; k < m.point_count; ++k) {
-      const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
-      const std::string pt = at + ".points[" + std::to_string(k) + "]";
-      finite(call, pt + ".anchor_a", p.anchor_a);
-      finite(call, pt + ".anchor_b", p.anchor_b);
-      in_range(call, pt + ".separation", p.separation, -kMaxMagnitude, kMaxMagnitude);
-      for (int earlier = 0; earlier < k; ++earlier) {
-        if (m.points[static_cast<std::size_t>(earlier)].feature_id == p.feature_id) {
-          reject(call, pt + ".feature_id", std::to_string(p.feature_id),
-                 "repeats points[" + std::to_string(earlier) +
-                     "]'s: feature ids tell a manifold's points apart");
-        }
-      }
-    }
+    if (!passes(w, m)) describe_failure(call, w, m, i);
     if (!seen.insert(contact_pair_key(m)).second) {
-      reject(call, at + ".key", std::to_string(m.key),
+      reject(call, "contacts[" + std::to_string(i) + "].key", std::to_string(m.key),
              "another manifold of this step has the same body pair and key");
     }
   }
