@@ -71,6 +71,32 @@ TEST(CarOnTheGround, RestsAtTheSpringsAndTyresDeflectionAndBouncesAtTheSpringsHe
   EXPECT_NEAR(b.hertz, o.hertz, 0.03 * o.hertz);
 }
 
+// The same car rolling at 10 m/s from the start (its motors holding that speed): its wheels
+// turn 0.48 rad per step, yet it rides at the resting car's height within the resting car's
+// 1e-5 m and bounces at the springs' 2 Hz within 3 %. Its wheel contacts are round (the
+// wheel's centre and radius, sphere_contacts.hpp), so the solver follows the centre, which
+// does not rise as the wheel turns; given by the wheel's lowest point (the contacts' only form
+// before radii) that point rose r (1 - cos 0.48) = 3.9 cm within each step and the car rode
+// 3.2 cm low, bouncing 5 % slow.
+TEST(CarOnTheGround, DrivingAtTenMetresASecondRidesAndBouncesAsAtRest) {
+  scenes::VehicleOptions o;
+  o.speed = 10.0;
+  WorldSettings settings;
+  settings.sleeping = false;
+  CarRun run(o, settings);
+  const scenes::Car& car = run.scene.cars[0];
+  std::vector<double> heights{run.world.body(car.chassis).position.y()};
+  for (int i = 0; i < 450; ++i) {
+    run.step();
+    heights.push_back(run.world.body(car.chassis).position.y());
+  }
+  EXPECT_NEAR(run.world.body(car.chassis).linear_velocity.x(), o.speed, 1e-3 * o.speed);
+  EXPECT_NEAR(heights.back(), run.scene.promised_ride_height, 1e-5);
+  heights.resize(151);
+  const scenes::Bounce b = scenes::measure_bounce(heights, run.scene.promised_ride_height, kDt);
+  EXPECT_NEAR(b.hertz, o.hertz, 0.03 * o.hertz);
+}
+
 // Started at rest with its motors set to 10 m/s, the car is pushed by the wheels' friction
 // (mu = 1 carries up to 3.1 kN per wheel, the motors ask 200 N m / 0.35 m = 571 N), so its
 // acceleration is what the motors' torque cap allows: 4 tau / r spent on the car's mass and
