@@ -69,5 +69,26 @@ TEST(RoundContacts, ARollingSphereGivenByItsSurfacePointSinksByTheAnchorsRise) {
   EXPECT_LT(sink, rise + 1e-3);
 }
 
+// The README's round-ball example (cut out of README.md by tests/CMakeLists.txt) as the contact
+// of a resting ball: it settles at r - g / omega_c^2 as the derivation above says.
+TEST(RoundContacts, TheReadmeExampleRestsABallOnItsContactSpring) {
+  World world;
+  const BodyId ground = add_ground(world);
+  const double r = 0.3;
+  BodyDef d;
+  d.position = {1.0, r, -2.0};
+  d.mass = 10.0;
+  d.inertia = solid_sphere_inertia(d.mass, r);
+  const BodyId ball = world.create_body(d);
+  for (int i = 0; i < 120; ++i) {
+    const Eigen::Vector3d centre = world.body(ball).position;
+    const double x = centre.x(), z = centre.z(), centre_height = centre.y();
+#include "readme_examples/round_example.inc"
+    world.step(kDt, {&m, 1});
+  }
+  const double omega_c = 2.0 * std::numbers::pi * world.settings().contact.hertz;
+  EXPECT_NEAR(world.body(ball).position.y(), r - 9.81 / (omega_c * omega_c), 1e-5);
+}
+
 }  // namespace
 }  // namespace softstep::test
