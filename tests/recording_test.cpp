@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "recording_files.hpp"
@@ -23,13 +24,16 @@ using test::expect_replay_error;
 using test::read_bytes;
 using test::temp_path;
 
-// Records a chain and then every kind of call between steps; returns the final state_hash.
-std::uint64_t record_every_call(const std::string& path, int steps_after) {
-  World world;
+scenes::ChainScene every_call_chain(World& world) {
   scenes::ChainOptions chain;
   chain.links = 12;
-  const scenes::ChainScene built = scenes::build_chain(world, chain);
-  world.start_recording(path);
+  return scenes::build_chain(world, chain);
+}
+
+// Every kind of call between steps on the chain of every_call_chain. `knobs` changes the
+// settings it sets, as an unchecked replay's adjust_settings does.
+void make_every_call(World& world, const scenes::ChainScene& built, int steps_after,
+                     const std::function<void(WorldSettings&)>& knobs = {}) {
   for (int i = 0; i < 5; ++i) world.step(1.0 / 60.0);
   BodyDef box;
   box.position = {1.0, 2.0, 0.5};
@@ -61,8 +65,17 @@ std::uint64_t record_every_call(const std::string& path, int steps_after) {
   WorldSettings s = world.settings();
   s.substeps = 6;
   s.gravity = {0.0, -5.0, 0.0};
+  if (knobs) knobs(s);
   world.set_settings(s);
   for (int i = 0; i < steps_after; ++i) world.step(1.0 / 60.0);
+}
+
+// Records a chain and then every kind of call between steps; returns the final state_hash.
+std::uint64_t record_every_call(const std::string& path, int steps_after) {
+  World world;
+  const scenes::ChainScene built = every_call_chain(world);
+  world.start_recording(path);
+  make_every_call(world, built, steps_after);
   world.stop_recording();
   return world.state_hash();
 }
@@ -77,6 +90,62 @@ TEST(Recording, EveryCallReplaysBitForBit) {
   EXPECT_EQ(seen, 27);
   EXPECT_EQ(report.calls, 14);  // 12 calls, and the 2 joints destroyed with the body
   EXPECT_EQ(report.state_hash, hash);
+  std::filesystem::remove(path);
+}
+
+// An unchecked replay (softstep sweep FILE.rec) runs the recorded calls at other settings,
+// held through the recording's own set_settings: it ends where the same calls made at those
+// settings end, bit for bit. The same hooks in a checked replay fail at the first step, and an
+// unchecked replay still refuses a cut file.
+TEST(Recording, AnUncheckedReplayRunsTheCallsAtOtherSettings) {
+  const std::string path = temp_path("unchecked");
+  const std::uint64_t recorded = record_every_call(path, 20);
+  const auto knobs = [](WorldSettings& s) {
+    s.substeps = 2;
+    s.relax_iterations = 0;
+    s.solve_iterations = 3;
+  };
+  WorldSettings start;
+  knobs(start);
+  World world(start);
+  make_every_call(world, every_call_chain(world), 20, knobs);
+
+  ReplayHooks hooks;
+  hooks.check = false;
+  hooks.adjust_settings = knobs;
+  long before = 0, after = 0;
+  hooks.before_step = [&](World& w, long step, double) {
+    EXPECT_EQ(step, after + 1);
+    EXPECT_EQ(w.settings().substeps, 2);
+    before = step;
+  };
+  hooks.after_step = [&](World&, long step, double) {
+    EXPECT_EQ(step, before);
+    after = step;
+  };
+  const ReplayReport report = replay_recording(path, hooks);
+  EXPECT_EQ(report.steps, 27);
+  EXPECT_EQ(after, 27);
+  EXPECT_EQ(report.calls, 14);
+  EXPECT_EQ(report.state_hash, world.state_hash());
+  EXPECT_NE(report.state_hash, recorded);
+
+  hooks.check = true;
+  after = 0;
+  try {
+    replay_recording(path, hooks);
+    ADD_FAILURE() << "a checked replay at other settings passed";
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string(e.what()).find("step 1 diverged"), std::string::npos) << e.what();
+  }
+  hooks.check = false;
+  const std::string bytes = read_bytes(path);
+  try {
+    replay_recording_bytes(bytes.substr(0, bytes.size() - 30), "cut.rec", hooks);
+    ADD_FAILURE() << "replayed a cut file";
+  } catch (const RecordingError& e) {
+    EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+  }
   std::filesystem::remove(path);
 }
 
@@ -252,7 +321,7 @@ TEST(Recording, CorruptedFilesSayWhatIsWrong) {
       {"version 0", 8, 0, "version 0"},
       {"scene", 20 + 2, '!', "initial scene"},
       {"unknown tag", first_record, 77, "unknown record tag 77"},
-      {"initial hash", 20 + scene_size, 0x5a, "start recording before the first step"},
+      {"initial hash", 20 + scene_size, 0x5a, "does not load into the world that was recorded"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.what);
@@ -285,6 +354,32 @@ TEST(Recording, ForcesAppliedBeforeRecordingAreInItsInitialState) {
   const ReplayReport report = replay_recording(path);
   EXPECT_EQ(report.steps, 3);
   EXPECT_EQ(report.state_hash, recorded);
+  std::filesystem::remove(path);
+}
+
+// A recording started on a world with sleeping islands replays bit for bit: its initial scene
+// holds them (and the island woken while recording wakes in the replay too).
+TEST(Recording, AWorldWithSleepingIslandsReplays) {
+  const std::string path = temp_path("sleeping");
+  World world;
+  scenes::ChainOptions hanging;
+  hanging.links = 4;
+  hanging.chains = 2;
+  hanging.layout = scenes::ChainLayout::Hanging;
+  const scenes::ChainScene rest = scenes::build_chain(world, hanging);
+  scenes::ChainOptions sideways;
+  sideways.links = 5;
+  scenes::build_chain(world, sideways);
+  for (int i = 0; i < 60; ++i) world.step(1.0 / 60.0);
+  ASSERT_FALSE(world.is_awake(rest.links[0].back()));
+  world.start_recording(path);
+  for (int i = 0; i < 20; ++i) world.step(1.0 / 60.0);
+  world.set_angular_velocity(rest.links[0][1], {0.0, 0.0, 1.0});
+  for (int i = 0; i < 20; ++i) world.step(1.0 / 60.0);
+  world.stop_recording();
+  const ReplayReport report = replay_recording(path);
+  EXPECT_EQ(report.steps, 40);
+  EXPECT_EQ(report.state_hash, world.state_hash());
   std::filesystem::remove(path);
 }
 
@@ -321,7 +416,7 @@ TEST(Recording, AWorldThatSteppedReplaysOneWithDestroyedIdsIsNamed) {
     replay_recording(path);
     ADD_FAILURE() << "replayed";
   } catch (const RecordingError& e) {
-    EXPECT_NE(std::string(e.what()).find("start recording before the first step"),
+    EXPECT_NE(std::string(e.what()).find("start recording before the first destroy_body"),
               std::string::npos)
         << e.what();
   }

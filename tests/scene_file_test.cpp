@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -107,6 +108,7 @@ WorldSettings unusual_settings() {
   s.sleep_angular_speed = 0.02;
   s.time_to_sleep = 1.5;
   s.specialize = false;
+  s.fixed_threads = true;
   return s;
 }
 
@@ -204,6 +206,7 @@ TEST(SceneFile, EveryBuiltInSceneRoundTripsBitForBit) {
     EXPECT_EQ(loaded.settings().simd, original.settings().simd);
     EXPECT_EQ(loaded.settings().threads, original.settings().threads);
     EXPECT_EQ(loaded.settings().specialize, original.settings().specialize);
+    EXPECT_EQ(loaded.settings().fixed_threads, original.settings().fixed_threads);
     // Written again, the loaded world gives the same file.
     EXPECT_EQ(save_scene_text(loaded), text);
     // And it moves the same: the file lost nothing the solver uses.
@@ -291,6 +294,113 @@ TEST(SceneFile, SavedAfterStepsReloadsBitForBitWithItsWarmStart) {
     ADD_FAILURE() << "loaded";
   } catch (const SceneFileError& e) {
     EXPECT_NE(std::string(e.what()).find("/impulse/0"), std::string::npos) << e.what();
+  }
+}
+
+// Two short chains hanging at rest from the ceiling (each its own island: the ceiling is
+// static) and one laid out sideways that swings: after 60 steps the hanging ones sleep.
+struct SleepingWorld {
+  World world;
+  std::vector<BodyId> hanging_ends;
+  BodyId swinging_end;
+  SleepingWorld() {
+    scenes::ChainOptions hanging;
+    hanging.links = 4;
+    hanging.chains = 2;
+    hanging.layout = scenes::ChainLayout::Hanging;
+    const scenes::ChainScene rest = scenes::build_chain(world, hanging);
+    for (const auto& links : rest.links) hanging_ends.push_back(links.back());
+    scenes::ChainOptions sideways;
+    sideways.links = 5;
+    swinging_end = scenes::build_chain(world, sideways).links[0].back();
+    for (int i = 0; i < 60; ++i) world.step(1.0 / 60.0);
+  }
+};
+
+// Sleeping islands are in the file (solver_state "sleeping_islands"): a world with some
+// reloads asleep where it slept, with the same state hash, the same next steps while they
+// sleep, and the same steps after one is woken.
+TEST(SceneFile, SleepingIslandsRoundTripBitForBit) {
+  SleepingWorld original;
+  for (BodyId end : original.hanging_ends) ASSERT_FALSE(original.world.is_awake(end));
+  ASSERT_TRUE(original.world.is_awake(original.swinging_end));
+  const std::string text = save_scene_text(original.world);
+  EXPECT_NE(text.find("\"sleeping_islands\":[["), std::string::npos);
+  World loaded = load_scene_text(text, "sleeping");
+  EXPECT_EQ(loaded.state_hash(), original.world.state_hash());
+  EXPECT_EQ(save_scene_text(loaded), text);
+  const BodyId woken = original.hanging_ends[1];  // the same id in both: no body was destroyed
+  for (int i = 0; i < 40; ++i) {
+    SCOPED_TRACE(i);
+    if (i == 20) {
+      original.world.set_linear_velocity(woken, {0.5, 0.0, 0.0});
+      loaded.set_linear_velocity(woken, {0.5, 0.0, 0.0});
+    }
+    original.world.step(1.0 / 60.0);
+    loaded.step(1.0 / 60.0);
+    ASSERT_EQ(loaded.state_hash(), original.world.state_hash());
+  }
+  EXPECT_TRUE(loaded.is_awake(woken));
+  EXPECT_FALSE(loaded.is_awake(original.hanging_ends[0]));
+}
+
+// A sleeping island that is not one (a static body, a body twice, a joint to an awake body),
+// or islands in a world with sleeping off, is refused with its path.
+TEST(SceneFile, BadSleepingIslandsAreNamed) {
+  SleepingWorld original;
+  const std::string text = save_scene_text(original.world);
+  const std::size_t at = text.find("\"sleeping_islands\":[");
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t list = at + std::strlen("\"sleeping_islands\":[");
+  struct Case {
+    const char* island;
+    const char* message;
+  };
+  // Body 0 is the first chain's ceiling anchor (static); bodies 1..4 its links; the swinging
+  // chain's links are the last bodies.
+  const Case cases[] = {
+      {"[0]", "a static body does not sleep"},
+      {"[]", "expected a non-empty array"},
+      {"[1,1]", "a body in two sleeping islands"},
+      {"[999]", "expected a body's index"},
+      {"[\"x\"]", "expected a body's index"},
+      {"[1]", "a body in two sleeping islands"},  // 1 sleeps in the file's own island too
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.island);
+    std::string bad = text;
+    bad.insert(list, std::string(c.island) + ",");
+    try {
+      load_scene_text(bad, "bad.json");
+      ADD_FAILURE() << "loaded";
+    } catch (const SceneFileError& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("/solver_state/sleeping_islands"), std::string::npos)
+          << e.what();
+    }
+  }
+  // Half an island: the rest of its chain is awake and jointed to it.
+  const nlohmann::json root = nlohmann::json::parse(text);
+  const auto& islands = root["solver_state"]["sleeping_islands"];
+  ASSERT_EQ(islands.size(), 2u);
+  ASSERT_EQ(islands[0].size(), 4u);
+  nlohmann::json half = root;
+  half["solver_state"]["sleeping_islands"][0].erase(3);
+  try {
+    load_scene_text(half.dump(), "half.json");
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("a joint links this island to a movable body outside"),
+              std::string::npos)
+        << e.what();
+  }
+  nlohmann::json off = root;
+  off["settings"]["sleeping"] = false;
+  try {
+    load_scene_text(off.dump(), "off.json");
+    ADD_FAILURE() << "loaded";
+  } catch (const SceneFileError& e) {
+    EXPECT_NE(std::string(e.what()).find("sleeping off"), std::string::npos) << e.what();
   }
 }
 

@@ -50,15 +50,14 @@ int profile_recording(const ProfileOptions& o) {
   // Of the steps given contacts: manifolds, points and softstep's share of taking them.
   std::vector<double> manifolds, points, contact_load_ms;
   ReplayHooks hooks;
-  hooks.on_start = [&](World& world) {
-    WorldSettings s = world.settings();
+  // Kept through the recording's own set_settings calls.
+  hooks.adjust_settings = [&](WorldSettings& s) {
     if (given("--threads")) s.threads = o.settings.threads;
     if (o.threads_fixed) s.fixed_threads = true;
     if (given("--simd")) s.simd = parse_simd(o.simd);
     if (o.general) s.specialize = false;
-    world.set_settings(s);
-    world.set_profiling(true);
   };
+  hooks.on_start = [&](World& world) { world.set_profiling(true); };
   hooks.after_step = [&](World& world, long, double) {
     const StepProfile& p = world.last_step_profile();
     samples.add(p, p.step_ms, clock_us);

@@ -105,7 +105,7 @@ void StepSamples::add(const StepProfile& p, double ms, double start_us) {
 
 void print_serial_share(const StepSamples& samples) {
   std::printf(
-      "serial share     %.1f %% of the step() call on one thread whatever the thread count "
+      "serial share     %.2f %% of the step() call on one thread whatever the thread count "
       "(input checks, plan, contact load and store, inertia sums, sleep, recording)\n",
       100.0 * median(samples.serial_share));
 }

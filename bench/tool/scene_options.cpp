@@ -16,8 +16,9 @@ namespace softstep::tool {
 
 const char* const kSceneHelp =
     "Scenes (default chain), or the path of a scene file (softstep profile ... --save FILE\n"
-    "writes one; README \"Your own scene\" has the format), or for profile a recording\n"
-    "(profile ... --record FILE), replayed with every step checked:\n"
+    "writes one; README \"Your own scene\" has the format), or for profile and sweep a\n"
+    "recording (profile ... --record FILE): profile replays it with every step checked,\n"
+    "sweep replays its calls at each setting:\n"
     "  chain   N solid 1 kg spheres of radius 0.1 m, 0.25 m apart, laid out horizontally (or\n"
     "          hanging straight down, unstretched), the first link jointed to the static world;\n"
     "          M parallel chains 1 m apart. --end-mass: the last link weighs KG instead (a\n"
@@ -179,14 +180,25 @@ SceneRun load_file_scene(World& world, const SceneChoice& c) {
   World loaded = load_scene_text(c.file_text, c.scene);
   loaded.set_settings(world.settings());
   world = std::move(loaded);
+  return describe_world(world, "file " + c.scene);
+}
+
+}  // namespace
+
+std::vector<BodyId> dynamic_bodies(const World& world) {
+  std::vector<BodyId> dynamic;
+  for (BodyId b : world.body_ids()) {
+    if (world.body(b).type == BodyType::Dynamic) dynamic.push_back(b);
+  }
+  return dynamic;
+}
+
+SceneRun describe_world(const World& world, const std::string& name) {
   SceneRun run;
   run.joints = world.joint_ids();
+  run.bodies = dynamic_bodies(world);
   Eigen::AlignedBox3d box;
-  for (BodyId b : world.body_ids()) {
-    const BodyState s = world.body(b);
-    box.extend(s.position);
-    if (s.type == BodyType::Dynamic) run.bodies.push_back(b);
-  }
+  for (BodyId b : world.body_ids()) box.extend(world.body(b).position);
   // Joints per type, in the order of JointType.
   std::vector<std::pair<JointType, std::size_t>> per_type;
   for (JointId j : run.joints) {
@@ -202,13 +214,11 @@ SceneRun load_file_scene(World& world, const SceneChoice& c) {
     joints_text += (joints_text.empty() ? "" : ", ") + std::to_string(n) + " " +
                    joint_type_name(type);
   run.rows = static_cast<double>(world.step_plan().rows_per_pass);
-  run.description = "file " + c.scene + ": " + std::to_string(world.body_count()) + " bodies, " +
+  run.description = name + ": " + std::to_string(world.body_count()) + " bodies, " +
                     (joints_text.empty() ? std::string("no") : joints_text) + " joints";
   run.reach = box.isEmpty() ? 0.0 : box.diagonal().norm();
   return run;
 }
-
-}  // namespace
 
 SceneRun build_scene(World& world, const SceneChoice& c) {
   if (is_joint_scene(c.scene)) return build_joint_scene(world, c);

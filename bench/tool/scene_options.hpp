@@ -106,6 +106,11 @@ WorldSettings scene_settings(const SceneChoice& choice);
 // replaces it, keeping those settings.
 SceneRun build_scene(World& world, const SceneChoice& choice);
 
+// A world loaded from a file (a scene file, a recording's initial scene) as a SceneRun:
+// its dynamic bodies, its joints, and a description starting with `name`.
+SceneRun describe_world(const World& world, const std::string& name);
+std::vector<BodyId> dynamic_bodies(const World& world);
+
 // The bodies' centres now, m.
 std::vector<Eigen::Vector3d> positions(const World& world, const std::vector<BodyId>& bodies);
 

@@ -1,10 +1,10 @@
-// softstep sweep: runs a scene once per setting of a grid of knobs, times it and measures its
-// error against the exact references, then writes results.csv, pareto.svg and summary.md.
+// softstep sweep: runs a scene (or replays a recording's calls, swept_scene.hpp) once per
+// setting of a grid of knobs, times it and measures its error against the exact references,
+// then writes results.csv, pareto.svg and summary.md.
 #include "tool/sweep_command.hpp"
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -21,6 +21,7 @@
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
+#include "tool/swept_scene.hpp"
 
 namespace softstep::tool {
 
@@ -39,13 +40,15 @@ const char* const kSweepHelp =
     "                  RMS row residual J v + bias + Gamma P of the solver's result, m/s\n"
     "  energy drift    largest |E - E0| / E0, potential energy from the lowest reachable point\n"
     "--error picks the error of the chart and of the Pareto front.\n"
-    "DIR gets results.csv (one row per setting), pareto.svg and summary.md.\n\n";
+    "DIR gets results.csv (one row per setting), pareto.svg and summary.md.\n"
+    "A recording (World::start_recording, profile ... --record FILE) is swept by replaying its\n"
+    "calls at each setting, unchecked (the settings change what its steps compute): its steps\n"
+    "with their dt and contacts, and every creation, destruction and setter between them; the\n"
+    "swept knobs hold through its own set_settings calls. The reference replays it too.\n\n";
 
 }  // namespace
 
 namespace {
-
-constexpr double kDt = 1.0 / 60.0;
 
 struct Setting {
   int substeps, relax, iterations;
@@ -106,8 +109,9 @@ double scene_energy(const World& world, const SceneRun& run) {
   }
 }
 
-// The scene's settings (a scene file's, or the defaults) with the setting's knobs.
-WorldSettings settings_of(const Setting& s, WorldSettings w) {
+// The setting's knobs on the scene's settings (a scene file's or recording's, or the
+// defaults).
+void apply_knobs(const Setting& s, WorldSettings& w) {
   w.substeps = s.substeps;
   w.relax_iterations = s.relax;
   w.solve_iterations = s.iterations;
@@ -116,18 +120,12 @@ WorldSettings settings_of(const Setting& s, WorldSettings w) {
   w.threads = s.threads;
   w.rigid_hertz = s.rigid_hertz;
   w.solver = s.solver;
-  return w;
 }
 
 // The larger of two error readings, NaN when either is: a run that blew up must not pass
 // for accurate because std::max drops NaN.
 double worst(double a, double b) {
   return std::isnan(a) || std::isnan(b) ? kNaN : std::max(a, b);
-}
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-      .count();
 }
 
 }  // namespace
@@ -138,7 +136,7 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
       "what accuracy costs in time: a scene over a grid of settings, with its Pareto front");
   add_scene_options(*cmd, o.scene);
   cmd->add_option("--out", o.out, "the folder the results go to")->required()->type_name("DIR");
-  cmd->add_option("--steps", o.steps, "steps of 1/60 s per run")
+  cmd->add_option("--steps", o.steps, "steps of 1/60 s per run (a recording runs its own)")
       ->check(whole_in(2, 1000000))
       ->capture_default_str();
   const auto list = [&](const char* name, std::vector<long>& into, long min, long max,
@@ -188,19 +186,16 @@ CLI::App* add_sweep_command(CLI::App& app, SweepOptions& o) {
       ->check(whole_in(0, 1000000))
       ->capture_default_str();
   cmd->footer(std::string(kSweepHelp) + kSceneHelp);
+  o.command = cmd;
   return cmd;
 }
 
 int sweep_command(const SweepOptions& o) {
   const SceneChoice& choice = o.scene;
-  // A sweep changes the settings, so a recording's steps would no longer match it; sweeping
-  // the calls of a recording unchecked is not built yet.
-  if (choice.from_recording)
-    throw UsageError(choice.scene +
-                     " is a recording: softstep profile and replay take it; sweep takes a scene "
-                     "or a scene file (softstep profile ... --save FILE)");
+  if (choice.from_recording && o.command != nullptr && o.command->count("--steps") > 0)
+    throw UsageError("--steps cannot be used with a recording (" + choice.scene +
+                     "): a sweep runs all its recorded steps");
   const std::string& out = o.out;
-  const long steps = o.steps;
   const std::vector<long>& substeps = o.substeps;
   const std::vector<long>& relax = o.relax;
   const std::vector<long>& iterations = o.iterations;
@@ -210,12 +205,18 @@ int sweep_command(const SweepOptions& o) {
   const std::string& error_name = o.error;
   const int reference_substeps = o.reference_substeps;
   const int reference_iterations = o.reference_iterations;
-  if (o.probes > steps)
+  if (o.probes > o.steps)
     throw UsageError("--probes " + std::to_string(o.probes) + ": at most --steps (" +
-                     std::to_string(steps) + ")");
-  const long probes = o.probes;
+                     std::to_string(o.steps) + ")");
   // Checked before the runs: a long sweep must not end in a write error.
   check_writable_directory("--out", out);
+  // A recording is read (and its steps counted) here, so that a bad file stops the sweep
+  // before it starts, with the reader's error.
+  const SweptScene subject(choice, o.steps);
+  const long steps = subject.steps();
+  if (steps == 0) throw UsageError(choice.scene + " has no steps to sweep");
+  // A recording's own step count bounds the probes it can take.
+  const long probes = std::min(o.probes, steps);
 
   std::vector<bool> warm_choices;
   for (const char* w : {"on", "off"}) {
@@ -227,6 +228,7 @@ int sweep_command(const SweepOptions& o) {
     if (std::find(o.simd.begin(), o.simd.end(), name) != o.simd.end())
       simd_choices.push_back(parse_simd(name));
   }
+  const double dt = subject.uniform_dt();
   std::vector<Setting> grid;
   for (long s : substeps)
     for (long r : relax)
@@ -236,9 +238,12 @@ int sweep_command(const SweepOptions& o) {
             for (long t : threads)
               for (long k : rigid_hertz) {
                 // Rigid rows are solved at min(rigid_hertz, sub-step rate / 4): a value above
-                // the cap runs the same solve as the cap, and is measured once.
-                const double cap = 0.25 * static_cast<double>(s) / kDt;
-                const auto solved_at = [cap](long hz) { return std::min(double(hz), cap); };
+                // the cap runs the same solve as the cap, and is measured once (when every
+                // step has the same dt, and so the same cap).
+                const double cap = dt > 0.0 ? 0.25 * static_cast<double>(s) / dt : kNaN;
+                const auto solved_at = [cap](long hz) {
+                  return std::isnan(cap) ? double(hz) : std::min(double(hz), cap);
+                };
                 const auto first_alike =
                     std::find_if(rigid_hertz.begin(), rigid_hertz.end(),
                                  [&](long other) { return solved_at(other) == solved_at(k); });
@@ -265,19 +270,20 @@ int sweep_command(const SweepOptions& o) {
   std::vector<std::vector<Eigen::Vector3d>> reference_positions(
       static_cast<std::size_t>(steps + 1));
   {
-    WorldSettings fine = scene_settings(choice);
-    fine.substeps = reference_substeps;
-    fine.solve_iterations = reference_iterations;
-    fine.relax_iterations = reference_iterations;
-    World world(fine);
-    const SceneRun run = build_scene(world, choice);
     ProgressBar bar("reference", steps);
-    for (long i = 1; i <= steps; ++i) {
-      step_scene(world, run, kDt);
+    SweepRunHooks hooks;
+    hooks.after_step = [&](World& world, SceneRun& run, long i, double) {
       if (sampled(i))
         reference_positions[static_cast<std::size_t>(i)] = positions(world, run.bodies);
       bar.update(i);
-    }
+    };
+    subject.run(
+        [&](WorldSettings& fine) {
+          fine.substeps = reference_substeps;
+          fine.solve_iterations = reference_iterations;
+          fine.relax_iterations = reference_iterations;
+        },
+        hooks);
   }
 
   std::string description;
@@ -295,30 +301,27 @@ int sweep_command(const SweepOptions& o) {
         const Setting& setting = grid[g];
         Measured& m = results[g];
         const bool measuring = r == 0;
-        World world(settings_of(setting, scene_settings(choice)));
-        const SceneRun run = build_scene(world, choice);
-        description = run.description;
-        body_count = world.body_count();
-        joint_count = world.joint_count();
-        const double offset = measuring ? energy_offset(world, run) : 0.0;
-        const double e0 =
-            measuring ? scene_energy(world, run) + offset : 0.0;
+        double offset = 0.0, e0 = 0.0, sum_sq = 0.0;
         std::vector<double> step_ms;
-        double sum_sq = 0.0;
-        if (measuring && run.limit_violation_deg) m.limit_violation_deg = 0.0;
-        for (long i = 1; i <= steps; ++i) {
-          const bool probe = measuring && probed(i);  // capturing costs a copy: not timed
-          world.set_solve_capture(probe);
-          // The scene's own contacts are its collision detection: not timed.
-          const std::span<const ContactManifold> contacts =
-              run.contacts ? run.contacts() : std::span<const ContactManifold>();
-          const auto t0 = std::chrono::steady_clock::now();
-          if (run.contacts) world.step(kDt, contacts);
-          else world.step(kDt);
-          if (!measuring) step_ms.push_back(elapsed_ms(t0));
-          // The scene's own bookkeeping (the bridge's carts brake on the far pier), untimed.
-          if (run.after_step) run.after_step();
-          if (!measuring) continue;
+        SweepRunHooks hooks;
+        hooks.start = [&](World& world, SceneRun& run) {
+          description = run.description;
+          body_count = world.body_count();
+          joint_count = world.joint_count();
+          if (!measuring) return;
+          offset = energy_offset(world, run);
+          e0 = scene_energy(world, run) + offset;
+          if (run.limit_violation_deg) m.limit_violation_deg = 0.0;
+        };
+        // Capturing costs a copy, outside the timed step.
+        hooks.before_step = [&](World& world, long i) {
+          world.set_solve_capture(measuring && probed(i));
+        };
+        hooks.after_step = [&](World& world, SceneRun& run, long i, double ms) {
+          if (!measuring) {
+            step_ms.push_back(ms);
+            return;
+          }
           const scenes::JointErrors e = scenes::joint_errors(world, run.joints);
           m.max_joint_error = worst(m.max_joint_error, e.max);
           sum_sq += e.rms * e.rms;
@@ -333,7 +336,7 @@ int sweep_command(const SweepOptions& o) {
             if (run.limit_violation_deg)
               m.limit_violation_deg = worst(m.limit_violation_deg, run.limit_violation_deg());
           }
-          if (probe) {
+          if (probed(i)) {
             try {
               const reference::SoftSystem system = reference::first_substep_system(world);
               const reference::ExactSolution exact = reference::solve_exact(system);
@@ -348,10 +351,13 @@ int sweep_command(const SweepOptions& o) {
               m.reference_distance = m.velocity_residual = kNaN;
             }
           }
-        }
+        };
+        hooks.finish = [&](World&, SceneRun& run) {
+          if (measuring && run.readings) m.scene = run.readings();
+        };
+        subject.run([&](WorldSettings& w) { apply_knobs(setting, w); }, hooks);
         if (measuring) {
           m.rms_joint_error = std::sqrt(sum_sq / static_cast<double>(steps));
-          if (run.readings) m.scene = run.readings();
           // A run that blew up has no meaningful error.
           if (!std::isfinite(m.max_joint_error) || !std::isfinite(m.drift))
             m.max_joint_error = m.rms_joint_error = m.drift = kNaN;
@@ -404,7 +410,7 @@ int sweep_command(const SweepOptions& o) {
            "," + format_number(m.scene.crossing_s) + "\n";
   }
   write_file(out + "/results.csv", csv);
-  const std::string title = description + ": " + std::to_string(steps) + " steps of 1/60 s";
+  const std::string title = description + ": " + subject.steps_text();
   write_file(out + "/pareto.svg",
              pareto_svg(points, front, labels,
                         {title, "time per step (ms, median of " + std::to_string(runs) + " runs)",

@@ -24,6 +24,8 @@ struct SweepOptions {
   int reference_substeps = 64;
   int reference_iterations = 4;
   long probes = 4;
+  // The parsed command: whether --steps was given (a recording runs its own steps).
+  const CLI::App* command = nullptr;
 };
 
 // Declares `softstep sweep` and its options on the tool's app.

@@ -71,10 +71,9 @@ std::uint32_t find_root(std::vector<std::uint32_t>& root, std::uint32_t s) {
 }
 }  // namespace
 
-void World::Impl::update_sleep(double dt) {
-  if (!settings.sleeping) return;
+World::Impl::RestTest World::Impl::rest_test(double dt) const {
   const WorldSettings& st = settings;
-  const std::vector<std::uint32_t>& awake = solver_bodies.movable;
+  if (!st.sleeping) return {};
   // A body rests when both its velocity and what the step moved it are below the sleep
   // speeds. The velocity alone is not enough: a joint left wide open (created apart, or
   // stretched) is closed by the solve pass's bounded correction, and the relax pass then
@@ -83,18 +82,22 @@ void World::Impl::update_sleep(double dt) {
   const double moved = st.sleep_linear_speed * dt;
   const double turned =
       std::sin(std::min(0.5 * st.sleep_angular_speed * dt, 0.5 * std::numbers::pi));
-  const float moved2 = static_cast<float>(moved * moved);
-  const float turned2 = static_cast<float>(turned * turned);
-  bool ready = false;
-  for (std::uint32_t s : awake) {
-    BodySlot& b = bodies[s];
-    const bool resting = !b.never_sleep && b.linear_velocity.norm() <= st.sleep_linear_speed &&
-                         b.angular_velocity.norm() <= st.sleep_angular_speed &&
-                         b.step_moved2 <= moved2 && b.step_turned2 <= turned2;
-    b.sleep_time = resting ? b.sleep_time + dt : 0.0;
-    ready |= b.sleep_time >= st.time_to_sleep;
-  }
-  if (!ready) return;
+  return {true, dt, static_cast<float>(moved * moved), static_cast<float>(turned * turned)};
+}
+
+bool World::Impl::update_rest_time(BodySlot& b, const RestTest& test) const {
+  const WorldSettings& st = settings;
+  const bool resting = !b.never_sleep && b.linear_velocity.norm() <= st.sleep_linear_speed &&
+                       b.angular_velocity.norm() <= st.sleep_angular_speed &&
+                       b.step_moved2 <= test.moved2 && b.step_turned2 <= test.turned2;
+  b.sleep_time = resting ? b.sleep_time + test.dt : 0.0;
+  return b.sleep_time >= st.time_to_sleep;
+}
+
+void World::Impl::update_sleep(bool some_ready) {
+  if (!settings.sleeping || !some_ready) return;
+  const WorldSettings& st = settings;
+  const std::vector<std::uint32_t>& awake = solver_bodies.movable;
 
   // Islands of the awake bodies (union-find over their joints), each with the shortest rest
   // time of its bodies. Joints of awake bodies only link awake bodies: a joint to a sleeping

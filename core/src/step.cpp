@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -94,17 +95,32 @@ void run_on_host_tasks(const TaskCallbacks& tasks, int threads, Run& run) {
 
 }  // namespace
 
-void World::Impl::geometric_inertia(float h, double impulse_substep) {
-  // A world without awake joints or with the setting off pays no pass. Only the awake
-  // bodies' entries are cleared and read: a step costs nothing for sleeping ones.
-  extra_inertia_on = false;
-  if (!settings.geometric_stiffness || impulse_substep <= 0.0 || plan.kernels.empty()) return;
-  extra_inertia_on = true;
-  if (extra_inertia.size() != bodies.size()) extra_inertia.assign(bodies.size(), 0.0);
-  for (std::uint32_t s : solver_bodies.movable) extra_inertia[s] = 0.0;
+bool World::Impl::geometric_inertia_applies(double impulse_substep) const {
+  // A world without awake joints or with the setting off pays no pass.
+  return settings.geometric_stiffness && impulse_substep > 0.0 && !plan.kernels.empty();
+}
+
+void World::Impl::plan_geometric_inertia(double impulse_substep, bool refresh) {
+  extra_inertia_on = geometric_inertia_applies(impulse_substep);
+  if ((extra_inertia_on || refresh) && extra_inertia.size() != bodies.size()) {
+    extra_inertia.assign(bodies.size(), 0.0);
+  }
+}
+
+void World::Impl::geometric_inertia(float h, double impulse_substep,
+                                    const solver::Share& share) {
+  if (!geometric_inertia_applies(impulse_substep)) return;
+  // Only the awake bodies' entries are cleared and read: a step costs nothing for sleeping
+  // ones.
+  const solver::Slice mine = solver::slice_of(solver_bodies.movable.size(), share);
+  for (std::size_t i = mine.begin; i < mine.end; ++i) extra_inertia[solver_bodies.movable[i]] = 0.0;
+  solver::team_barrier(share);
+  // Read by the mass records, after the barrier that ends the sums.
+  if (share.thread == 0) extra_inertia_on = true;
   // |force| = |impulse of a sub-step| / that sub-step
-  lane_solver->accumulate_geometric_inertia(joints, double(h) * double(h) / impulse_substep,
-                                            extra_inertia);
+  lane_solver->accumulate_geometric_inertia(joints, bodies,
+                                            double(h) * double(h) / impulse_substep,
+                                            extra_inertia, share);
 }
 
 void World::Impl::list_bodies() {
@@ -216,9 +232,10 @@ void World::Impl::prepare_bodies(float h, const solver::Share& share) {
   }
 }
 
-void World::Impl::finalize_bodies(const solver::Share& share) {
+bool World::Impl::finalize_bodies(const solver::Share& share, const RestTest& rest) {
   SolverBodies& sb = solver_bodies;
   const solver::Slice mine = solver::slice_of(sb.movable.size(), share);
+  bool some_ready = false;
   for (std::size_t index = mine.begin; index < mine.end; ++index) {
     const std::uint32_t s = sb.movable[index];
     BodySlot& b = bodies[s];
@@ -234,7 +251,9 @@ void World::Impl::finalize_bodies(const solver::Share& share) {
       b.linear_velocity = Eigen::Vector3d(v.v[0], v.v[1], v.v[2]);
       b.angular_velocity = Eigen::Vector3d(v.w[0], v.w[1], v.w[2]);
     }
+    if (rest.on) some_ready |= update_rest_time(b, rest);
   }
+  return some_ready;
 }
 
 void World::step(double dt) {
@@ -292,8 +311,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   // even when no joint needs them; restitution only when some contact asks for it.
   const bool has_contacts = !contact_solver.empty();
   const bool restitution = has_contacts && contact_solver.layout().restitution;
-  // Serial: the geometric inertia (joints add into shared bodies).
-  w.geometric_inertia(h, w.last_substep);
+  // The geometric inertia from the last step's impulses, summed in the team before the
+  // bodies are prepared.
+  const double inertia_substep = w.last_substep;
   // New joints have no force yet, so their bodies got no geometric inertia from them: a link of
   // tiny inertia then spins through the whole first step (0.5 m joint error in the "tiny
   // inertia" hard case). The first sub-step's impulses are a force; the inertia is recomputed
@@ -301,6 +321,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   // it with that inertia was tried, and did worse (0.35 m).
   const bool refresh_inertia = w.joints_without_history && s.geometric_stiffness &&
                                s.substeps > 1 && !w.plan.kernels.empty();
+  w.plan_geometric_inertia(inertia_substep, refresh_inertia);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
   // What this step runs: the plan's stages, nothing else.
@@ -312,6 +333,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   const bool gravity = planned(PlanStage::Gravity) || torque;
   const bool damping = planned(PlanStage::Damping);
   const bool capturing = w.capturing;
+  const Impl::RestTest rest = w.rest_test(dt);
+  std::atomic<bool> some_ready{false};  // read after the team has joined
   if (capturing) w.capture_step_start(h, rigid_solve_hertz(s, h));
 
   // Every thread runs every stage on its share; team_barrier orders the stages.
@@ -337,6 +360,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     };
     if (planned(PlanStage::PrepareBodies) || planned(PlanStage::PrepareJoints)) {
       stage(Stage::Prepare, [&] {
+        w.geometric_inertia(h, inertia_substep, share);
         w.prepare_bodies(h, share);
         solver::team_barrier(share);
         if (planned(PlanStage::PrepareJoints)) {
@@ -353,8 +377,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       if (planned(PlanStage::SpinLimit)) {
         stage(Stage::IntegrateVelocities, [&] {
           if (sub == 1 && refresh_inertia) {
-            if (share.thread == 0) w.geometric_inertia(h, h);
-            solver::team_barrier(share);
+            w.geometric_inertia(h, h, share);
             w.refresh_inertia(share);  // integrate_velocities reads no mass record
           }
           solver.integrate_velocities(w.solver_bodies, ctx, gravity, damping, torque, share);
@@ -421,7 +444,11 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       stage(Stage::Restitution,
             [&] { contact_solver.restitute(arrays, ctx, contact_ctx, share); });
     }
-    if (planned(PlanStage::Store)) stage(Stage::Store, [&] { w.finalize_bodies(share); });
+    if (planned(PlanStage::Store)) {
+      stage(Stage::Store, [&] {
+        if (w.finalize_bodies(share, rest)) some_ready.store(true, std::memory_order_relaxed);
+      });
+    }
   };
   const ThreadChoice choice = step_threads(w);
   const int threads = choice.threads;
@@ -464,7 +491,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   w.last_substep = h;
   w.joints_without_history = false;
   w.clear_forces();
-  w.update_sleep(dt);
+  w.update_sleep(some_ready.load(std::memory_order_relaxed));
   if (w.recorder) w.recorder->step(dt, contacts, motion_hash());
   if (profiling) {
     const double call_ms =

@@ -202,6 +202,14 @@ void World::destroy_body(BodyId id) {
   w.touch(slot);  // the rest of its island may have leant on it
   const std::vector<std::uint32_t> attached = w.bodies[slot].joints;
   for (std::uint32_t j : attached) destroy_joint({j, w.joints[j].generation});
+  // Its contacts' warm-start entries go with it now, not at the next step: the state hash and
+  // a scene file saved before that step would name a dead body. (A pass over the cache: a
+  // world that destroys bodies by the thousand between steps may want a per-body index.)
+  if (!w.contact_cache.empty()) {
+    const std::uint64_t word = (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
+    std::erase_if(w.contact_cache,
+                  [word](const auto& entry) { return entry.first.low == word || entry.first.high == word; });
+  }
   BodySlot& b = w.bodies[slot];
   b.alive = false;
   ++b.generation;

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "run_tool.hpp"
@@ -282,6 +283,61 @@ TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
   const ToolRun cut_profile = run_tool("profile " + dir + "/cut.rec");
   EXPECT_EQ(cut_profile.exit_code, 1);
   EXPECT_NE(cut_profile.err.find("cut.rec"), std::string::npos) << cut_profile.err;
+}
+
+// results.csv's rows without the columns that depend on time (ms_per_step, and pareto, which
+// is ranked by it).
+std::vector<std::string> error_rows(const std::string& csv) {
+  std::vector<std::string> rows;
+  std::istringstream lines(csv);
+  std::string line;
+  std::vector<std::string> header;
+  while (std::getline(lines, line)) {
+    std::vector<std::string> cells;
+    std::istringstream cell_stream(line);
+    std::string cell;
+    while (std::getline(cell_stream, cell, ',')) cells.push_back(cell);
+    if (header.empty()) header = cells;
+    std::string kept;
+    for (std::size_t k = 0; k < cells.size() && k < header.size(); ++k) {
+      if (header[k] != "ms_per_step" && header[k] != "pareto") kept += cells[k] + ",";
+    }
+    rows.push_back(kept);
+  }
+  return rows;
+}
+
+// softstep sweep FILE.rec replays the recording's calls at every setting and its reference
+// at the reference settings. A recording of steps of 1/60 s alone sweeps to the rows of the
+// scene file of its initial state, every error column to the printed digit (the same
+// calls in the same order at the same settings: bit for bit). --steps is refused (a recording
+// runs its own), and so is a corrupted recording, with the reader's error.
+TEST(ToolCli, SweepTakesARecording) {
+  const std::string dir = scratch_dir("sweep_recording");
+  const ToolRun made = run_tool("profile chain --links 20 --hertz 4 --steps 30 --save " + dir +
+                                "/s.json --record " + dir + "/run.rec");
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string grid =
+      " --substeps 1,4 --relax 0,1 --runs 1 --probes 2 --reference-substeps 16";
+  const ToolRun scene = run_tool("sweep " + dir + "/s.json --steps 30 --out " + dir + "/scene" + grid);
+  ASSERT_EQ(scene.exit_code, 0) << scene.err;
+  const ToolRun swept = run_tool("sweep " + dir + "/run.rec --out " + dir + "/rec" + grid);
+  ASSERT_EQ(swept.exit_code, 0) << swept.err;
+  const std::vector<std::string> from_scene = error_rows(read_text(dir + "/scene/results.csv"));
+  const std::vector<std::string> from_recording = error_rows(read_text(dir + "/rec/results.csv"));
+  ASSERT_EQ(from_scene.size(), 5u);  // the header and 4 settings
+  EXPECT_EQ(from_recording, from_scene);
+  EXPECT_NE(swept.out.find("30 recorded steps"), std::string::npos) << swept.out;
+
+  const ToolRun steps = run_tool("sweep " + dir + "/run.rec --steps 10 --out " + dir + "/x");
+  EXPECT_EQ(steps.exit_code, 2);
+  EXPECT_NE(steps.err.find("--steps cannot be used with a recording"), std::string::npos)
+      << steps.err;
+  const std::string bytes = read_text(dir + "/run.rec");
+  { std::ofstream(dir + "/cut.rec", std::ios::binary) << bytes.substr(0, bytes.size() - 30); }
+  const ToolRun cut = run_tool("sweep " + dir + "/cut.rec --out " + dir + "/cut" + grid);
+  EXPECT_EQ(cut.exit_code, 1);
+  EXPECT_NE(cut.err.find(dir + "/cut.rec: truncated"), std::string::npos) << cut.err;
 }
 
 // A recording with contacts (the fuzzer's seed: softstep_contacts pyramid --base 2 --steps 3

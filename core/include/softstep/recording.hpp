@@ -28,13 +28,26 @@ struct ReplayReport {
   long contact_manifolds = 0;    // manifolds given to those steps, all steps together
 };
 
-// What a caller may do around a replay without changing it.
+// What a caller may do around a replay. A checked replay (the default) must reproduce the
+// recording: anything here that changes what a step computes makes it fail at that step.
 struct ReplayHooks {
-  // Once, on the world loaded from the initial scene, before any record is replayed: to turn
-  // on profiling, or to pick the threads or SIMD width (settings that never change a result).
-  // Anything that changes what a step computes makes the replay fail at that step.
+  // Once, on the world loaded from the initial scene (after adjust_settings), before any
+  // record is replayed: to turn on profiling, for instance.
   std::function<void(World& world)> on_start;
+  // Around each step (numbered from 1), with its dt: before_step just before World::step,
+  // after_step right after it (a checked replay has compared the motion hash by then).
+  std::function<void(World& world, long step, double dt)> before_step;
   std::function<void(World& world, long step, double dt)> after_step;
+  // Applied to the settings the world starts with and to those of every set_settings record,
+  // so that they hold for the whole replay: the threads or SIMD width of a checked replay
+  // (which never change a result), the sub-steps or iterations of an unchecked one.
+  std::function<void(WorldSettings& settings)> adjust_settings;
+  // false: an unchecked replay, which runs the recorded calls (steps with their dt and
+  // contacts, creations, destructions, setters) without comparing the motion hash after each
+  // step or the state hash at the end: for replaying a recording at other settings, as
+  // softstep sweep FILE does. The file is read as strictly (its initial scene must load into
+  // the recorded world, a call must give the recorded id, a refused call is an error).
+  bool check = true;
 };
 ReplayReport replay_recording(const std::string& path, const ReplayHooks& hooks);
 ReplayReport replay_recording_bytes(const std::string& bytes, const std::string& name,

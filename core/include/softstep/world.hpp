@@ -202,9 +202,9 @@ class World {
   // Writes the world as it is now (a scene file's content) and from then on every call that
   // changes it and every step (dt, the contacts given to it, and the motion hash after it) to
   // a binary file at `path` (softstep/recording.hpp replays it). A world that has stepped can
-  // be recorded (its scene keeps the joints' warm-start impulses and the contacts' warm-start
-  // cache), unless it has sleeping islands or destroyed bodies or joints, which a scene does
-  // not hold (the replay says so at its start). Throws
+  // be recorded (its scene keeps the joints' warm-start impulses, the contacts' warm-start
+  // cache and the sleeping islands), unless it has destroyed bodies or joints, whose ids and
+  // joint colouring a scene does not hold (the replay says so at its start). Throws
   // std::runtime_error when the file cannot be written; a recording already running is
   // stopped first.
   void start_recording(const std::string& path);

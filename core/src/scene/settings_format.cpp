@@ -48,6 +48,7 @@ constexpr Field<bool> kSwitches[] = {
     {"geometric_stiffness", &WorldSettings::geometric_stiffness},
     {"sleeping", &WorldSettings::sleeping},
     {"specialize", &WorldSettings::specialize},
+    {"fixed_threads", &WorldSettings::fixed_threads},
 };
 
 constexpr SimdWidth kWidths[] = {SimdWidth::Best, SimdWidth::Scalar, SimdWidth::Sse,

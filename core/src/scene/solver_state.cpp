@@ -1,5 +1,6 @@
 #include "solver_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "contact_cache_format.hpp"
@@ -14,6 +15,68 @@ int impulses_of(JointType type) {
   return JointKinds::with(type, []<class Kind>() { return Kind::kImpulses; });
 }
 
+// The sleeping islands' bodies by their index in "bodies", each island in slot order.
+json sleeping_islands_json(const World::Impl& w, const BodyIndex& index) {
+  json islands = json::array();
+  for (const std::vector<std::uint32_t>& members : w.islands) {
+    if (members.empty()) continue;  // woken, its index free
+    json list = json::array();
+    for (std::uint32_t slot : members) list.push_back(index(BodyId{slot, w.bodies[slot].generation}));
+    islands.push_back(std::move(list));
+  }
+  return islands;
+}
+
+// Puts the file's sleeping islands to sleep as update_sleep would have: each a set of movable
+// bodies that no joint links to a movable body outside it (a joint to an awake body would be
+// solved against a sleeper that never moves).
+void read_sleeping_islands(const Source& source, ObjectReader& fields,
+                           const std::vector<BodyId>& bodies, World& world) {
+  const char* key = "sleeping_islands";
+  const json& list = fields.array(key, /*optional=*/true);
+  if (list.empty()) return;
+  World::Impl& w = WorldInternals::of(world);
+  const std::string path = fields.path_of(key);
+  if (!w.settings.sleeping)
+    fail(source, path, "sleeping islands in a world whose settings have sleeping off");
+  constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> island_of(w.bodies.size(), kNone);
+  std::vector<std::vector<std::uint32_t>> islands(list.size());
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const std::string island_path = path + "/" + std::to_string(i);
+    if (!list[i].is_array() || list[i].empty())
+      fail(source, island_path, "expected a non-empty array of body indices in \"bodies\"");
+    for (std::size_t k = 0; k < list[i].size(); ++k) {
+      const json& v = list[i][k];
+      const std::string member_path = island_path + "/" + std::to_string(k);
+      if (!v.is_number_integer() || v < 0 || v.get<std::uint64_t>() >= bodies.size())
+        fail(source, member_path,
+             "expected a body's index in \"bodies\" (the file has " +
+                 std::to_string(bodies.size()) + " bodies)");
+      const std::uint32_t slot = bodies[v.get<std::size_t>()].index;
+      if (w.bodies[slot].type == BodyType::Static)
+        fail(source, member_path, "a static body does not sleep");
+      if (island_of[slot] != kNone)
+        fail(source, member_path, "a body in two sleeping islands (or twice in one)");
+      island_of[slot] = static_cast<std::uint32_t>(i);
+      islands[i].push_back(slot);
+    }
+  }
+  for (std::size_t i = 0; i < islands.size(); ++i) {
+    for (std::uint32_t slot : islands[i]) {
+      for (std::uint32_t j : w.bodies[slot].joints) {
+        const std::uint32_t other = w.joints[j].body_a == slot ? w.joints[j].body_b : w.joints[j].body_a;
+        if (w.bodies[other].type != BodyType::Static && island_of[other] != island_of[slot])
+          fail(source, path + "/" + std::to_string(i),
+               "a joint links this island to a movable body outside it (an island is every "
+               "movable body its joints reach)");
+      }
+    }
+    std::sort(islands[i].begin(), islands[i].end());
+    w.sleep_island(islands[i]);
+  }
+}
+
 }  // namespace
 
 std::string world_state_text(const World& world, const BodyIndex& index) {
@@ -23,6 +86,8 @@ std::string world_state_text(const World& world, const BodyIndex& index) {
                 {"joints_without_history", w.joints_without_history}};
   json contacts = contact_cache_json(world, index);
   if (!contacts.empty()) state["contact_cache"] = std::move(contacts);
+  json islands = sleeping_islands_json(w, index);
+  if (!islands.empty()) state["sleeping_islands"] = std::move(islands);
   return state.dump();
 }
 
@@ -34,6 +99,7 @@ void read_world_state(const Source& source, const json& solver_state,
     fail(source, fields.path_of("last_substep"), "expected a finite time >= 0 (s)");
   const bool fresh_joints = fields.boolean("joints_without_history", true);
   read_contact_cache(source, fields, bodies, world);
+  read_sleeping_islands(source, fields, bodies, world);
   fields.no_other_keys();
   if (h == 0.0) return;
   World::Impl& w = WorldInternals::of(world);

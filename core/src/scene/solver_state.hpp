@@ -1,9 +1,10 @@
 // What a world that has stepped holds beyond its bodies and joints, and a scene file keeps so
 // that it reloads into the same world (the same state_hash, the same next step): each joint's
 // warm-start impulses ("impulse") and unwrapped hinge angle ("unwrapped_angle"), each body's
-// rest time towards sleep ("sleep_time"). Written only when not zero, so a scene saved before
-// its first step has none. Not kept: sleeping islands (they reload awake) and the ids of
-// destroyed bodies and joints.
+// rest time towards sleep ("sleep_time"), the sleeping islands. Written only when not zero, so
+// a scene saved before its first step has none. Not kept: the ids of destroyed bodies and
+// joints, and with them the joints' colouring, which depends on the order of every joint
+// created and destroyed (graph_coloring.hpp), not only on the joints there are.
 #pragma once
 
 #include "joint_formats.hpp"
@@ -13,9 +14,10 @@
 namespace softstep::scene {
 
 // The top-level "solver_state": the last step's sub-step (s) and whether joints were created
-// since, which the geometric inertia of the next step depends on, and the contacts' warm-start
-// cache (contact_cache_format.hpp). Absent before a first step. The reader applies it after
-// every body and joint is created.
+// since, which the geometric inertia of the next step depends on, the contacts' warm-start
+// cache (contact_cache_format.hpp) and the sleeping islands ("sleeping_islands": each an
+// array of body indices). Absent before a first step. The reader applies it after every body
+// and joint is created.
 std::string world_state_text(const World& world, const BodyIndex& index);  // "": nothing to keep
 void read_world_state(const Source& source, const json& solver_state,
                       const std::vector<BodyId>& bodies, World& world);

@@ -165,18 +165,29 @@ class LaneSolverImpl final : public LaneSolver {
     });
   }
 
-  void accumulate_geometric_inertia(const std::vector<JointSlot>& joints, double factor,
-                                    std::vector<double>& extra) const override {
-    visit_lanes(*this, solver::Share{},
-                [&]<class Kind>(const auto& group, int lane, std::uint32_t slot) {
-                  float impulse[kMaxJointImpulses];
-                  Kind::read_impulses(group, lane, impulse);
-                  const JointSlot& j = joints[slot];
-                  const double magnitude = Kind::tension(j, impulse);
-                  if (magnitude == 0.0) return;
-                  extra[j.body_a] += factor * magnitude * j.local_anchor_a.norm();
-                  extra[j.body_b] += factor * magnitude * j.local_anchor_b.norm();
-                });
+  void accumulate_geometric_inertia(const std::vector<JointSlot>& joints,
+                                    const std::vector<BodySlot>& bodies, double factor,
+                                    std::vector<double>& extra,
+                                    const solver::Share& share) const override {
+    // Colour by colour with a barrier between: a colour's joints share no dynamic body, so
+    // the threads' adds never meet, and each body sums its joints in colour order whatever
+    // the thread count (bit-identical). Static and kinematic bodies, which joints of one
+    // colour may share, take no extra inertia: nothing reads theirs.
+    const auto add = [&](std::uint32_t body, const Eigen::Vector3d& anchor, double magnitude) {
+      if (bodies[body].type == BodyType::Dynamic) extra[body] += factor * magnitude * anchor.norm();
+    };
+    visit_lanes(
+        *this, share,
+        [&]<class Kind>(const auto& group, int lane, std::uint32_t slot) {
+          float impulse[kMaxJointImpulses];
+          Kind::read_impulses(group, lane, impulse);
+          const JointSlot& j = joints[slot];
+          const double magnitude = Kind::tension(j, impulse);
+          if (magnitude == 0.0) return;
+          add(j.body_a, j.local_anchor_a, magnitude);
+          add(j.body_b, j.local_anchor_b, magnitude);
+        },
+        true);
   }
 
   const std::vector<KernelUse>& uses() const override { return uses_; }
@@ -394,9 +405,11 @@ class LaneSolverImpl final : public LaneSolver {
 
   // Visits every real lane of this thread's share of the groups of every colour, then (on
   // thread 0 only) of the overflow set, as f.template operator()<Kind>(group, lane, slot).
-  // Self is LaneSolverImpl or const LaneSolverImpl.
+  // Self is LaneSolverImpl or const LaneSolverImpl. `in_colour_order`: a team barrier after
+  // each colour and after the overflow set, for visits that write into shared bodies.
   template <class Self, class F>
-  static void visit_lanes(Self& self, const solver::Share& share, F&& f) {
+  static void visit_lanes(Self& self, const solver::Share& share, F&& f,
+                          bool in_colour_order = false) {
     const auto visit = [&](auto& batches, int width, const solver::Share& part) {
       JointKinds::for_each([&]<class Kind>() {
         auto& groups = std::get<JointKinds::index_of<Kind>()>(batches).groups;
@@ -409,8 +422,12 @@ class LaneSolverImpl final : public LaneSolver {
         }
       });
     };
-    for (auto& c : self.colors_) visit(c, W, share);
+    for (auto& c : self.colors_) {
+      visit(c, W, share);
+      if (in_colour_order) team_barrier(share);
+    }
     if (share.thread == 0) visit(self.overflow_, 1, solver::Share{});
+    if (in_colour_order) team_barrier(share);
   }
 
   KernelTable<W> kernels_;
