@@ -20,12 +20,13 @@ namespace {
 const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);
 constexpr double kDt = 1.0 / 60.0;
 
-// Three stacks of four boxes on the ground, a bouncing ball (restitution) and a ball rolling on
-// a conveyor (rolling resistance, tangent speed, a manifold key): every field a manifold has.
+// Three stacks of four boxes on the ground, a bouncing ball (restitution), a ball rolling on
+// a conveyor (rolling resistance, tangent speed, a manifold key) and a fast-rolling wheel given
+// as a round shape (its radius): every field a manifold has.
 struct ContactScene {
   static constexpr int kStacks = 3, kBoxes = 4;
   World world;
-  BodyId ground, ball, roller;
+  BodyId ground, ball, roller, wheel;
   std::vector<std::vector<BodyId>> stacks;
 
   explicit ContactScene(const WorldSettings& s = {}) : world(s) {
@@ -45,12 +46,16 @@ struct ContactScene {
     d.position = {-6.0, 0.25, 0.0};
     d.angular_velocity = {0.0, 0.0, -4.0};
     roller = world.create_body(d);
+    d.position = {-9.0, 0.25, 0.0};
+    d.linear_velocity = {5.0, 0.0, 0.0};
+    d.angular_velocity = {0.0, 0.0, -20.0};
+    wheel = world.create_body(d);
   }
 
   // The manifolds for the poses the world has now, always in this order and of these sizes in
   // the file: 12 box manifolds of 4 points without optional fields (290 bytes each), the ball
   // (1 point, restitution: 118 bytes), the roller (1 point, rolling resistance, tangent speed
-  // and key: 142 bytes).
+  // and key: 142 bytes), the wheel (1 point, radius: 126 bytes).
   std::vector<ContactManifold> contacts() const {
     std::vector<ContactManifold> m;
     for (const auto& stack : stacks) {
@@ -68,6 +73,9 @@ struct ContactScene {
     r.tangent_speed = {0.3, -0.1};
     r.key = 0x1234567890ull;
     m.push_back(r);
+    ContactManifold w = round_sphere_on_ground(world, ground, wheel, 0.25);
+    w.friction = 0.8;
+    m.push_back(w);
     return m;
   }
 
@@ -78,7 +86,7 @@ constexpr std::size_t kBoxManifoldBytes = 50 + 4 * 60;
 constexpr std::size_t kBoxManifolds = ContactScene::kStacks * ContactScene::kBoxes;
 // tag, dt, count, the manifolds, the motion hash
 constexpr std::size_t kContactStepBytes = 1 + 8 + 4 + kBoxManifolds * kBoxManifoldBytes +
-                                          (50 + 8 + 60) + (50 + 8 + 16 + 8 + 60) + 8;
+                                          (50 + 8 + 60) + (50 + 8 + 16 + 8 + 60) + (50 + 16 + 60) + 8;
 
 // Where the records start: after the signature, version, scene and initial hash.
 std::size_t first_record(const std::string& bytes) {
@@ -120,7 +128,7 @@ TEST(RecordingContacts, AStackReplaysBitForBitEveryStep) {
   const ReplayReport report = replay_checking(path, hashes);
   EXPECT_EQ(report.steps, 60);
   EXPECT_EQ(report.contact_steps, 60);
-  EXPECT_EQ(report.contact_manifolds, 60 * long(kBoxManifolds + 2));
+  EXPECT_EQ(report.contact_manifolds, 60 * long(kBoxManifolds + 3));
   EXPECT_EQ(report.state_hash, hashes.back());
   // Every step's record has the size the layout says (the flags left out the zero fields).
   const std::string bytes = read_bytes(path);
@@ -215,13 +223,19 @@ TEST(RecordingContacts, AChangedContactFailsReplayAtItsStep) {
 }
 
 // Corrupted contact records are refused by name: a point count or flags no writer makes, a
-// body the world does not have, a normal that is not a unit vector (the step's own validation).
+// body the world does not have, a normal that is not a unit vector or a negative radius (the
+// step's own validation).
 TEST(RecordingContacts, CorruptedContactRecordsSayWhatIsWrong) {
   const std::string path = temp_path("contacts_corrupt");
   record(path, 0, 3);
   const std::string bytes = read_bytes(path);
   const std::size_t step2 = first_record(bytes) + kContactStepBytes;
   const std::size_t manifold3 = step2 + 13 + 3 * kBoxManifoldBytes;
+  // The wheel's radius_b: the last byte of the double after its radius_a (0.25 = 3fd0...).
+  const std::size_t wheel_radius_b =
+      step2 + 13 + kBoxManifolds * kBoxManifoldBytes + (50 + 8 + 60) + (50 + 8 + 16 + 8 + 60) + 50 +
+      8 + 7;
+  ASSERT_EQ(bytes[wheel_radius_b], char(0x3f));
   struct Case {
     const char* what;
     std::size_t at;
@@ -234,6 +248,7 @@ TEST(RecordingContacts, CorruptedContactRecordsSayWhatIsWrong) {
       {"flags", manifold3 + 41, char(0x80), "step 2: contacts[3] has unknown flags 128"},
       {"body", manifold3 + 8, 99, "contacts[3].body_b"},
       {"normal", manifold3 + 16 + 7, 0x7f, "contacts[3].normal"},
+      {"radius", wheel_radius_b, char(0xbf), "contacts[14].radius_b = -0.25"},
       {"count", step2 + 9 + 3, 0x40, "truncated"},
   };
   for (const Case& c : cases) {

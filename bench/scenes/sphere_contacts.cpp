@@ -7,8 +7,7 @@ namespace softstep::scenes {
 namespace {
 
 // One point: `on_a` the closest point of A (world), n the unit normal from A to B.
-ContactManifold one_point(const BodyState& a, BodyId a_id, const BodyState& b,
-                          const SphereShape& sphere, const Eigen::Vector3d& on_a,
+ContactManifold one_point(const BodyState& a, BodyId a_id, const SphereShape& sphere, const Eigen::Vector3d& on_a,
                           const Eigen::Vector3d& n, double separation, double friction) {
   ContactManifold m;
   m.body_a = a_id;
@@ -17,7 +16,10 @@ ContactManifold one_point(const BodyState& a, BodyId a_id, const BodyState& b,
   m.friction = friction;
   m.point_count = 1;
   m.points[0].anchor_a = a.orientation.inverse() * (on_a - a.position);
-  m.points[0].anchor_b = b.orientation.inverse() * (-sphere.radius * n);
+  // The sphere is round: its anchor is its centre (its centre of mass) and radius_b puts the
+  // surface below it, so the point does not turn up off the ground as the wheel rolls.
+  m.points[0].anchor_b = Eigen::Vector3d::Zero();
+  m.radius_b = sphere.radius;
   m.points[0].separation = separation;
   m.points[0].feature_id = 0;
   return m;
@@ -31,7 +33,7 @@ std::optional<ContactManifold> sphere_on_plane(const World& world, BodyId ground
   const BodyState b = world.body(sphere.body);
   const double separation = b.position.y() - height - sphere.radius;
   if (separation > margin) return std::nullopt;
-  return one_point(world.body(ground), ground, b, sphere,
+  return one_point(world.body(ground), ground, sphere,
                    {b.position.x(), height, b.position.z()}, Eigen::Vector3d::UnitY(), separation,
                    friction);
 }
@@ -66,7 +68,7 @@ std::optional<ContactManifold> sphere_on_box(const World& world, BodyId box,
     separation = distance - sphere.radius;
   }
   if (separation > margin) return std::nullopt;
-  return one_point(a, box, b, sphere, a.position + a.orientation * on_box,
+  return one_point(a, box, sphere, a.position + a.orientation * on_box,
                    a.orientation * normal, separation, friction);
 }
 

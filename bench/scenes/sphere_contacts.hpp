@@ -2,7 +2,9 @@
 // phase of the scenes whose only round shapes are wheels (vehicle, the cart crossing the
 // suspension bridge). One point per pair, so feature id 0 and key 0 identify it from step to
 // step (a body pair has one manifold) and warm starting carries its impulses over; the point
-// stays the same feature when the closest point slides from a box's face to its edge.
+// stays the same feature when the closest point slides from a box's face to its edge. The
+// sphere's side is given as round (anchor_b its centre, radius_b its radius), so a fast-rolling
+// wheel's contact stays at the bottom within the step.
 //
 // A wheel is a sphere here: with its axle level (the wheel joint keeps it so) a cylinder's
 // lowest point is the sphere's, straight below the centre; a rolled axle would put the

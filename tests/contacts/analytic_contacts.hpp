@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "softstep/softstep.hpp"
@@ -97,6 +98,24 @@ inline ContactManifold sphere_on_ground(const World& world, BodyId ground, BodyI
   m.points[0].anchor_a =
       g.orientation.inverse() * (Eigen::Vector3d(b.position.x(), 0.0, b.position.z()) - g.position);
   m.points[0].separation = b.position.y() - r;
+  return m;
+}
+
+// The same contact given as a round shape's (ContactManifold::radius_a / radius_b): the
+// anchor is the sphere's centre and the radius puts its surface on the ground. With
+// `ball_is_a` the pair is given the other way round (the ball is A, the normal points down
+// to the ground), which exercises radius_a.
+inline ContactManifold round_sphere_on_ground(const World& world, BodyId ground, BodyId ball,
+                                              double r, bool ball_is_a = false) {
+  ContactManifold m = sphere_on_ground(world, ground, ball, r);
+  m.points[0].anchor_b = Eigen::Vector3d::Zero();
+  m.radius_b = r;
+  if (ball_is_a) {
+    std::swap(m.body_a, m.body_b);
+    std::swap(m.points[0].anchor_a, m.points[0].anchor_b);
+    std::swap(m.radius_a, m.radius_b);
+    m.normal = -m.normal;
+  }
   return m;
 }
 

@@ -1,6 +1,7 @@
 // Contacts give bit-identical results at every SIMD width and thread count (the design's
-// promise): stacks, a sliding box, a bouncing ball, a rolling ball and a pendulum joint in one
-// world, compared by state hash and by every reading.
+// promise): stacks, a sliding box, a bouncing ball, rolling balls (round shapes among them:
+// radius_a and radius_b) and a pendulum joint in one world, compared by state hash and by
+// every reading.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -43,6 +44,15 @@ Outcome run(SimdWidth width, int threads) {
   d.position = {-6.0, 0.25, 0.0};
   d.angular_velocity = {0.0, 0.0, -4.0};
   const BodyId roller = world.create_body(d);
+  // Round shapes (radius_b, and radius_a with the pair given the other way round), rolling
+  // fast enough that their cores' turning within a step matters.
+  d.position = {-9.0, 0.25, 0.0};
+  d.linear_velocity = {5.0, 0.0, 0.3};
+  d.angular_velocity = {0.0, 0.0, -20.0};
+  const BodyId round_b = world.create_body(d);
+  d.position = {-12.0, 0.25, 1.0};
+  d.angular_velocity = {1.0, 0.0, -20.0};
+  const BodyId round_a = world.create_body(d);
   BallJointDef j;
   j.body_a = stacks[0].back();
   j.body_b = add_box(world, {0.0, 6.5, 1.5}, 1.0, {0.2, 0.2, 0.2});
@@ -67,6 +77,13 @@ Outcome run(SimdWidth width, int threads) {
     r.friction = 0.9;
     r.rolling_resistance = 0.02;
     contacts.push_back(r);
+    ContactManifold rb = round_sphere_on_ground(world, ground, round_b, 0.25);
+    rb.friction = 0.7;
+    rb.rolling_resistance = 0.01;
+    contacts.push_back(rb);
+    ContactManifold ra = round_sphere_on_ground(world, ground, round_a, 0.25, /*ball_is_a=*/true);
+    ra.friction = 0.5;
+    contacts.push_back(ra);
     world.step(1.0 / 60.0, contacts);
   }
   out.hash = world.state_hash();

@@ -92,6 +92,17 @@ TEST(ContactValidation, Coefficients) {
                   "contacts[0].tangent_speed.y", "nan");
 }
 
+TEST(ContactValidation, Radii) {
+  expect_rejected([](ContactManifold& m, Scene&) { m.radius_a = kNaN; }, "contacts[0].radius_a",
+                  "nan");
+  expect_rejected([](ContactManifold& m, Scene&) { m.radius_b = -0.25; },
+                  "contacts[0].radius_b", "-0.25");
+  expect_rejected([](ContactManifold& m, Scene&) { m.radius_b = kInf; }, "contacts[0].radius_b",
+                  "inf");
+  expect_rejected([](ContactManifold& m, Scene&) { m.radius_a = -kInf; },
+                  "contacts[0].radius_a", "-inf");
+}
+
 TEST(ContactValidation, Points) {
   expect_rejected([](ContactManifold& m, Scene&) { m.points[2].separation = kNaN; },
                   "contacts[0].points[2].separation", "nan");

@@ -20,6 +20,15 @@
 //   shapes overlap (penetration), positive for a speculative point that is still apart: such a
 //   point lets the gap close within the step but pushes only if the bodies would pass through.
 //   World::local_point converts world points to anchors.
+// - Round shapes (spheres, capsules, wheels, rounded boxes) set radius_a / radius_b: a body's
+//   anchors are then points of its shape's core (a sphere's centre, the closest point of a
+//   capsule's segment) and its surface lies that radius further along the normal (A's surface
+//   at core_a + radius_a * normal, B's at core_b - radius_b * normal). separation stays the
+//   distance between the surfaces. Why: within a step softstep follows each point by turning
+//   its anchors with the body; a rolling wheel's surface point turns away from the ground
+//   (by r (1 - cos) per step, centimetres at road speeds) although the wheel does not rise,
+//   while its centre turns with it and stays put. Leave both 0 for flat features (box corners
+//   and faces); the results are then bit for bit those of a manifold without radii.
 // - feature_id identifies a point within its manifold from step to step (e.g. the pair of
 //   features of the two shapes that produced it); key identifies the manifold within its body
 //   pair (e.g. the two shapes' ids when bodies have several shapes). A point whose (ordered
@@ -64,6 +73,10 @@ struct ContactManifold {
   // belt), m/s. The tangents are tangent_directions(normal).
   Eigen::Vector2d tangent_speed = Eigen::Vector2d::Zero();
   std::uint64_t key = 0;  // the caller's id of this manifold within its body pair
+  // m, finite, >= 0: the shape's radius about its anchors when they are a round shape's core
+  // (see "Round shapes" above); 0 = the anchors are on the surface.
+  double radius_a = 0.0;
+  double radius_b = 0.0;
 };
 
 // The two world tangents softstep uses for a normal (unit, orthogonal, right-handed with the

@@ -106,6 +106,13 @@ void put3(float (&dst)[3][W], int lane, const Eigen::Vector3d& v) {
   for (int k = 0; k < 3; ++k) dst[k][lane] = static_cast<float>(v[k]);
 }
 
+// A round shape's surface point, core + offset * n (offset = radius_a for A, -radius_b for B);
+// the core itself, bit for bit, for a flat feature (radius 0).
+Eigen::Vector3d surface_point(const Eigen::Vector3d& core, double offset,
+                              const Eigen::Vector3d& n) {
+  return offset != 0.0 ? Eigen::Vector3d(core + offset * n) : core;
+}
+
 // One manifold into one lane: the geometry in double (the anchors turned to the world at the
 // step start) and the warm-start impulses from the matching cached points.
 template <int W>
@@ -128,6 +135,8 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   g.rolling_resistance[lane] = static_cast<float>(m.rolling_resistance);
   g.tangent_speed[0][lane] = static_cast<float>(m.tangent_speed.x());
   g.tangent_speed[1][lane] = static_cast<float>(m.tangent_speed.y());
+  g.radius_a[lane] = static_cast<float>(m.radius_a);
+  g.radius_b[lane] = static_cast<float>(m.radius_b);
   const Match match = warm_start ? find_match(m, cache) : Match{};
   put3<W>(g.rolling_impulse, lane,
           match.cached ? Eigen::Vector3d(match.sign * match.cached->rolling_impulse)
@@ -135,11 +144,11 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   for (int i = 0; i < m.point_count; ++i) {
     const ContactPoint& p = m.points[static_cast<std::size_t>(i)];
     auto& lanes = g.point[i];
-    const Eigen::Vector3d r_a = a.orientation * p.anchor_a;
-    const Eigen::Vector3d r_b = b.orientation * p.anchor_b;
-    put3<W>(lanes.r_a, lane, r_a);
-    put3<W>(lanes.r_b, lane, r_b);
-    lanes.base_separation[lane] = static_cast<float>(p.separation - n.dot(r_b - r_a));
+    const Eigen::Vector3d core_a = a.orientation * p.anchor_a;
+    const Eigen::Vector3d core_b = b.orientation * p.anchor_b;
+    put3<W>(lanes.r_a, lane, surface_point(core_a, m.radius_a, n));
+    put3<W>(lanes.r_b, lane, surface_point(core_b, -m.radius_b, n));
+    lanes.base_separation[lane] = static_cast<float>(p.separation - n.dot(core_b - core_a));
     const int k = matching_point(match, p.feature_id);
     double normal = 0.0;
     Eigen::Vector3d friction = Eigen::Vector3d::Zero();

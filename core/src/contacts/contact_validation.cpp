@@ -45,7 +45,8 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
   if (!within(m.friction, 0.0, kMaxMagnitude) || !within(m.restitution, 0.0, 1.0) ||
       !within(m.rolling_resistance, 0.0, kMaxMagnitude) ||
       !within(m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude) ||
-      !within(m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude)) {
+      !within(m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude) ||
+      !within(m.radius_a, 0.0, kMaxMagnitude) || !within(m.radius_b, 0.0, kMaxMagnitude)) {
     return false;
   }
   for (int k = 0; k < m.point_count; ++k) {
@@ -84,6 +85,8 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
   in_range(call, at + ".rolling_resistance", m.rolling_resistance, 0.0, kMaxMagnitude);
   in_range(call, at + ".tangent_speed.x", m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude);
   in_range(call, at + ".tangent_speed.y", m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude);
+  in_range(call, at + ".radius_a", m.radius_a, 0.0, kMaxMagnitude);
+  in_range(call, at + ".radius_b", m.radius_b, 0.0, kMaxMagnitude);
   for (int k = 0; k < m.point_count; ++k) {
     const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
     const std::string pt = at + ".points[" + std::to_string(k) + "]";

@@ -24,7 +24,7 @@ class ManifoldBytes {
 
  private:
   static constexpr std::size_t kMaxBytes =
-      kMinManifoldBytes + 8 + 8 + 16 + 8 + (kMaxContactPoints - 1) * (6 * 8 + 8 + 4);
+      kMinManifoldBytes + 8 + 8 + 16 + 8 + 16 + (kMaxContactPoints - 1) * (6 * 8 + 8 + 4);
   char bytes_[kMaxBytes];
   std::size_t size_ = 0;
 };
@@ -48,6 +48,7 @@ void write_contacts(ByteWriter& out, std::span<const ContactManifold> contacts) 
     if (nonzero(m.rolling_resistance)) flags |= kRollingResistance;
     if (nonzero(m.tangent_speed.x()) || nonzero(m.tangent_speed.y())) flags |= kTangentSpeed;
     if (m.key != 0) flags |= kKey;
+    if (nonzero(m.radius_a) || nonzero(m.radius_b)) flags |= kRadii;
     b.put(static_cast<std::uint8_t>(m.point_count));
     b.put(flags);
     b.put(m.friction);
@@ -58,6 +59,10 @@ void write_contacts(ByteWriter& out, std::span<const ContactManifold> contacts) 
       b.put(m.tangent_speed.y());
     }
     if (flags & kKey) b.put(m.key);
+    if (flags & kRadii) {
+      b.put(m.radius_a);
+      b.put(m.radius_b);
+    }
     for (int k = 0; k < m.point_count; ++k) {
       const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
       b.put(p.anchor_a);

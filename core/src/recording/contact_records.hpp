@@ -7,6 +7,7 @@
 //     f64 rolling resistance   if flags & kRollingResistance
 //     2 f64 tangent speed      if flags & kTangentSpeed
 //     u64 key                  if flags & kKey
+//     2 f64 radius A, radius B if flags & kRadii
 //     per point: 3 f64 anchor A, 3 f64 anchor B, f64 separation, u32 feature id
 //
 // Every value the step reads is kept to the bit (doubles as doubles), so the replay solves the
@@ -41,7 +42,8 @@ enum ContactFlags : std::uint8_t {
   kRollingResistance = 2,
   kTangentSpeed = 4,
   kKey = 8,
-  kAllContactFlags = 15,
+  kRadii = 16,  // a round shape: written only then, so files without radii read as before
+  kAllContactFlags = 31,
 };
 
 template <class Fail>
@@ -76,6 +78,10 @@ void read_contacts(ByteReader& in, std::vector<ContactManifold>& contacts, Fail&
       m.tangent_speed.y() = in.get<double>("a contact's tangent speed");
     }
     m.key = flags & kKey ? in.get<std::uint64_t>("a contact's key") : 0;
+    if (flags & kRadii) {
+      m.radius_a = in.get<double>("a contact's radius");
+      m.radius_b = in.get<double>("a contact's radius");
+    }
     for (int k = 0; k < points; ++k) {
       ContactPoint& p = m.points[static_cast<std::size_t>(k)];
       vector(p.anchor_a, "a contact point's anchor");

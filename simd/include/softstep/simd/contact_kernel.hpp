@@ -13,7 +13,10 @@
 //                start: drives the normal speed to -restitution * that speed.
 // The Jacobians use the anchors of the step start (fixed within the step, as Box2D and Box3D
 // do); the separation follows the bodies' motion since the step start, with the anchors
-// turned by each body's rotation.
+// turned by each body's rotation. A round shape (radius > 0: the caller's anchor is its core,
+// a sphere's centre) turns only its core: its surface point stays `radius` along the normal
+// from the core, so a rolling wheel's contact does not rise off the ground as the wheel turns.
+// The lever arms r_a, r_b are the surface points (core_a + radius_a n, core_b - radius_b n).
 #pragma once
 
 #include <cstdint>
@@ -44,7 +47,7 @@ struct alignas(kLaneAlign<W>) ContactPointLanes {
   // Written by core each step (world frame, at the step start):
   float r_a[3][W];            // contact point on A - centre of A, m
   float r_b[3][W];            // contact point on B - centre of B, m
-  float base_separation[W];   // separation - n . (r_b - r_a): add n . (x_B - x_A) for the gap
+  float base_separation[W];   // separation - n . (core_b - core_a): add n . (x_B - x_A)
   float normal_impulse[W];    // accumulated, N s (warm start on entry)
   float tangent_impulse[2][W];
   // Prepared:
@@ -66,6 +69,8 @@ struct alignas(kLaneAlign<W>) ContactLanes {
   float restitution[W];
   float rolling_resistance[W];
   float tangent_speed[2][W];
+  float radius_a[W];            // m, >= 0: core_a = r_a - radius_a n (0: the arm is the core)
+  float radius_b[W];            // m, >= 0: core_b = r_b + radius_b n
   float rolling_impulse[3][W];  // on B, N m s
   float rolling_mass[6][W];     // (I_A^-1 + I_B^-1)^-1, prepared
   ContactPointLanes<W> point[kContactPoints];
@@ -98,6 +103,17 @@ template <class L>
 SOFTSTEP_INLINE void aim_at(JointBodies<L>& j, const ContactPointLanes<kWidth<L>>& p) {
   j.r_a = load3<L>(p.r_a);
   j.r_b = load3<L>(p.r_b);
+}
+
+// The core a lever arm turns with: arm + offset * n where the shape is round (offset = -radius_a
+// for A, +radius_b for B). Selected rather than added so that a radius of 0 leaves the arm's
+// bits as they are (arm + 0 * n would turn a -0 component into +0).
+template <class L>
+SOFTSTEP_INLINE Vec3<L> core_of(const Vec3<L>& arm, const L& offset, const Vec3<L>& n) {
+  const auto round = offset != L(0.0f);
+  return {select(round, fmadd(offset, n.x, arm.x), arm.x),
+          select(round, fmadd(offset, n.y, arm.y), arm.y),
+          select(round, fmadd(offset, n.z, arm.z), arm.z)};
 }
 
 template <class L, std::uint32_t kSignature>
@@ -177,12 +193,15 @@ SOFTSTEP_INLINE void solve_contacts(ContactLanes<kWidth<L>>& g, const BodyArrays
   const Vec3<L> n = load3<L>(g.normal);
   // How far the centres moved towards each other along n since the step start.
   const L closing = dot(n, j.b.dp - j.a.dp);
+  const L offset_a = L(0.0f) - load<L>(g.radius_a);
+  const L offset_b = load<L>(g.radius_b);
   [[maybe_unused]] L total_normal(0.0f);
   for (int i = 0; i < g.points; ++i) {
     auto& p = g.point[i];
     aim_at(j, p);
     const L separation = load<L>(p.base_separation) + closing +
-                         dot(n, rotate(j.b.dq, j.r_b) - rotate(j.a.dq, j.r_a));
+                         dot(n, rotate(j.b.dq, core_of(j.r_b, offset_b, n)) -
+                                    rotate(j.a.dq, core_of(j.r_a, offset_a, n)));
     const L accumulated = load<L>(p.normal_impulse);
     const L dp = contact_normal_impulse<L, kUseBias>(dot(n, relative_velocity(j)), separation,
                                                      load<L>(p.normal_mass), accumulated, ctx, cc);
