@@ -29,6 +29,10 @@ std::string format(const Eigen::Vector3d& value);
 [[noreturn]] void reject(std::string_view call, std::string_view field, const std::string& value,
                          std::string_view rule);
 
+// What finite() accepts: finite and within +-kMaxMagnitude (every component). For checks that
+// test first and name the field only on failure (contact_validation.cpp).
+bool in_envelope(double value);
+bool in_envelope(const Eigen::Vector3d& value);
 void finite(std::string_view call, std::string_view field, double value);
 void finite(std::string_view call, std::string_view field, const Eigen::Vector3d& value);
 void non_negative(std::string_view call, std::string_view field, double value);

@@ -110,6 +110,9 @@ TEST(ContactValidation, Points) {
                   "contacts[0].points[1].anchor_a", "inf");
   expect_rejected([](ContactManifold& m, Scene&) { m.points[3].anchor_b.z() = kNaN; },
                   "contacts[0].points[3].anchor_b", "nan");
+  // Finite but outside the float envelope (+-1e9 m), as finite() rules for every other anchor.
+  expect_rejected([](ContactManifold& m, Scene&) { m.points[0].anchor_b.y() = 2e9; },
+                  "contacts[0].points[0].anchor_b", "2e+09");
   expect_rejected([](ContactManifold& m, Scene&) { m.points[3].feature_id = m.points[0].feature_id; },
                   "contacts[0].points[3].feature_id", "");
 }

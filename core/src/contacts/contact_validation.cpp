@@ -40,7 +40,7 @@ bool within(double value, double low, double high) {
 bool passes(const World::Impl& w, const ContactManifold& m) {
   if (!body_alive(w, m.body_a) || !body_alive(w, m.body_b) || m.body_a.index == m.body_b.index)
     return false;
-  if (!m.normal.allFinite() || std::abs(m.normal.norm() - 1.0) > kUnitTolerance) return false;
+  if (!in_envelope(m.normal) || std::abs(m.normal.norm() - 1.0) > kUnitTolerance) return false;
   if (m.point_count < 1 || m.point_count > kMaxContactPoints) return false;
   if (!within(m.friction, 0.0, kMaxMagnitude) || !within(m.restitution, 0.0, 1.0) ||
       !within(m.rolling_resistance, 0.0, kMaxMagnitude) ||
@@ -51,7 +51,7 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
   }
   for (int k = 0; k < m.point_count; ++k) {
     const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
-    if (!p.anchor_a.allFinite() || !p.anchor_b.allFinite() ||
+    if (!in_envelope(p.anchor_a) || !in_envelope(p.anchor_b) ||
         !within(p.separation, -kMaxMagnitude, kMaxMagnitude)) {
       return false;
     }
