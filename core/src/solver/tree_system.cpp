@@ -1,6 +1,5 @@
 #include "solver/tree_system.hpp"
 
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 namespace softstep::solver {
@@ -73,7 +72,6 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
     order_[static_cast<std::size_t>(last) - k] = n;
   }
   body_block_.resize(bodies);
-  body_factor_.resize(bodies);
   body_transfer_.resize(bodies);
   body_rhs_.resize(bodies);
   joint_inverse_.resize(joints.size());
@@ -81,9 +79,33 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   return true;
 }
 
+namespace {
+
+using Mat63 = Eigen::Matrix<double, 6, 3>;
+
+// B^-1 of a reduced body block, B = [A C; C^T D] in 3x3 blocks (linear, then angular): A is
+// m I plus what child joints add, D the inertia plus theirs, both positive definite, so is
+// the Schur complement S = D - C^T A^-1 C. Two 3x3 inverses (cofactors) and four 3x3 products,
+// all fixed-size and inlined: Eigen's LLT<Mat6> ran its factor and its triangular solves
+// through the dynamic-size kernels, half of the exact pass's time (perf, the 1,000-link whip).
+// Same pivot order as a Cholesky of B (linear rows first).
+void invert_body_block(Mat6& b) {
+  const Eigen::Matrix3d a_inverse = b.topLeftCorner<3, 3>().inverse();
+  const Eigen::Matrix3d g = a_inverse * b.topRightCorner<3, 3>();  // A^-1 C
+  const Eigen::Matrix3d s =
+      b.bottomRightCorner<3, 3>() - b.topRightCorner<3, 3>().transpose() * g;
+  const Eigen::Matrix3d s_inverse = s.inverse();
+  const Eigen::Matrix3d g_s = g * s_inverse;  // A^-1 C S^-1
+  b.topLeftCorner<3, 3>() = a_inverse + g_s * g.transpose();
+  b.topRightCorner<3, 3>() = -g_s;
+  b.bottomLeftCorner<3, 3>() = -g_s.transpose();
+  b.bottomRightCorner<3, 3>() = s_inverse;
+}
+
+}  // namespace
+
 void TreeSystem::factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints) {
-  // The blocks of H; each becomes its reduced block (a body's Cholesky factor, a joint's
-  // inverse) when its node is eliminated.
+  // The blocks of H; each becomes its reduced block's inverse when its node is eliminated.
   for (std::size_t b = 0; b < body_block_.size(); ++b) body_block_[b] = mass[b];
   for (std::size_t j = 0; j < joints.size(); ++j) {
     Eigen::Matrix3d d = -joints[j].gamma;
@@ -100,21 +122,23 @@ void TreeSystem::factor(const std::vector<Mat6>& mass, const std::vector<TreeJoi
     const TreeNode& node = order_[k];
     if (node.joint) {
       // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
-      joint_inverse_[node.index] = joint_inverse_[node.index].inverse().eval();
+      Eigen::Matrix3d& inverse = joint_inverse_[node.index];
+      inverse = inverse.inverse().eval();
       if (node.parent < 0) continue;
       const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
       const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
-      body_block_[parent.index].noalias() -=
-          jac.transpose() * (joint_inverse_[node.index] * jac);
+      const Jac scaled = inverse * jac;
+      body_block_[parent.index].noalias() -= jac.transpose() * scaled;
     } else {
-      // Reduced body blocks are M plus positive semidefinite terms: Cholesky.
-      Eigen::LLT<Mat6>& factor = body_factor_[node.index];
-      factor.compute(body_block_[node.index]);
+      // Reduced body blocks are M plus positive semidefinite terms.
+      Mat6& inverse = body_block_[node.index];
+      invert_body_block(inverse);
       if (node.parent < 0) continue;
       const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
       const Jac& jac = joints[parent.index].jacobian[node.side];  // E = J, 3x6
-      body_transfer_[node.index] = factor.solve(jac.transpose());
-      joint_inverse_[parent.index].noalias() -= jac * body_transfer_[node.index];
+      Mat63& transfer = body_transfer_[node.index];
+      transfer.noalias() = inverse * jac.transpose();
+      joint_inverse_[parent.index].noalias() -= jac * transfer;
     }
   }
 }
@@ -132,8 +156,8 @@ void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& 
     const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
     if (node.joint) {
       const Jac& jac = joints[node.index].jacobian[node.side];
-      body_rhs_[parent.index].noalias() -=
-          jac.transpose() * (joint_inverse_[node.index] * joint_rhs_[node.index]);
+      const Eigen::Vector3d scaled = joint_inverse_[node.index] * joint_rhs_[node.index];
+      body_rhs_[parent.index].noalias() -= jac.transpose() * scaled;
     } else {
       joint_rhs_[parent.index].noalias() -=
           body_transfer_[node.index].transpose() * body_rhs_[node.index];
@@ -144,21 +168,21 @@ void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& 
   // The root, then every node from its parent's solution (root first).
   const TreeNode& root = order_[n - 1];
   if (root.joint) {
-    dp[root.index] = joint_inverse_[root.index] * joint_rhs_[root.index];
+    dp[root.index].noalias() = joint_inverse_[root.index] * joint_rhs_[root.index];
   } else {
-    dv[root.index] = body_factor_[root.index].solve(body_rhs_[root.index]);
+    dv[root.index].noalias() = body_block_[root.index] * body_rhs_[root.index];
   }
   for (std::size_t k = n - 1; k-- > 0;) {
     const TreeNode& node = order_[k];
     const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
     if (node.joint) {
       const Jac& jac = joints[node.index].jacobian[node.side];
-      dp[node.index] =
-          joint_inverse_[node.index] * (joint_rhs_[node.index] - jac * dv[parent.index]);
+      const Eigen::Vector3d rhs = joint_rhs_[node.index] - jac * dv[parent.index];
+      dp[node.index].noalias() = joint_inverse_[node.index] * rhs;
     } else {
       const Jac& jac = joints[parent.index].jacobian[node.side];
-      dv[node.index] =
-          body_factor_[node.index].solve(body_rhs_[node.index] - jac.transpose() * dp[parent.index]);
+      const Vec6 rhs = body_rhs_[node.index] - jac.transpose() * dp[parent.index];
+      dv[node.index].noalias() = body_block_[node.index] * rhs;
     }
   }
   // The unknown of a joint is lambda = -dP.

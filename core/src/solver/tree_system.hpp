@@ -16,7 +16,6 @@
 // SIMD width and thread count.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -71,11 +70,11 @@ class TreeSystem {
 
  private:
   std::vector<TreeNode> order_;
-  // Scratch, sized once: per body the reduced block and its Cholesky factor, per joint the
-  // reduced block's inverse; the right sides.
-  std::vector<Mat6> body_block_;
-  std::vector<Eigen::LLT<Mat6>> body_factor_;
-  std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // D_b^-1 J^T towards the parent
+  // Scratch, sized once in build: per body the reduced block, then its inverse, and the
+  // transfer towards its parent joint; per joint the reduced block's inverse; the right sides.
+  // Fixed-size blocks and hand-ordered 3x3 arithmetic (tree_system.cpp says why).
+  std::vector<Mat6> body_block_;                            // B, then B^-1 once eliminated
+  std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // B^-1 J^T towards the parent
   std::vector<Vec6> body_rhs_;
   std::vector<Eigen::Matrix3d> joint_inverse_;
   std::vector<Eigen::Vector3d> joint_rhs_;
