@@ -427,7 +427,10 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeSolve)) {
         stage(Stage::Solve, [&] {
-          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, true, share);
+          // The masses change at sub-step 1 when the inertia is refreshed.
+          const bool same_masses = sub > 0 && !(sub == 1 && refresh_inertia);
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, true, same_masses,
+                       share);
           solver::team_barrier(share);
         });
       }
@@ -450,7 +453,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeRelax)) {
         stage(Stage::Relax, [&] {
-          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, false, share);
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, false, false, share);
           solver::team_barrier(share);
         });
       }

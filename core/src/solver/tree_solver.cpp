@@ -138,12 +138,14 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
 
 void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                       SolverBodies& solver_bodies, LaneSolver& lanes,
-                      const simd::SubstepContext& ctx, bool with_bias, const Share& share) {
+                      const simd::SubstepContext& ctx, bool with_bias, bool reuse_relax_factor,
+                      const Share& share) {
   // Islands are disjoint in bodies and joints: each thread solves its slice alone. One long
   // chain is one island and runs on one thread.
   const Slice mine = slice_of(islands_.size(), share);
   for (std::size_t i = mine.begin; i < mine.end; ++i) {
-    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, with_bias);
+    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, with_bias,
+                 reuse_relax_factor);
   }
 }
 
@@ -178,10 +180,14 @@ void TreeSolver::project_positions(Island& island, SolverBodies& sb,
 void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& joints,
                               const std::vector<BodySlot>& bodies, SolverBodies& sb,
                               LaneSolver& lanes, const simd::SubstepContext& ctx,
-                              bool with_bias) {
+                              bool with_bias, bool reuse_relax_factor) {
+  // A solve pass may reuse the factor of the last sub-step's relax pass (pass() says when):
+  // the bodies have moved only by the position projection since.
+  const bool reuse_factor = with_bias && reuse_relax_factor && island.relax_factored;
+  island.relax_factored = !with_bias;
   // M per body from the solver's mass record (the geometric-stiffness inertia included), so
   // the exact pass and the Gauss-Seidel passes solve with the same masses.
-  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+  for (std::size_t b = 0; b < island.bodies.size() && !reuse_factor; ++b) {
     const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
     Eigen::Matrix3d inv_i;
     inv_i << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
@@ -209,7 +215,14 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
     const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
     TreeJoint& t = island.rows[k];
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    if (j.type == JointType::Ball) {
+    if (reuse_factor) {
+      // The factor's Jacobians stay (the relax pass's); only C and J v are today's.
+      if (j.type == JointType::Ball) {
+        c = separation;
+      } else {
+        c[0] = separation.norm() - std::get<DistanceJointDef>(j.def).rest_length;
+      }
+    } else if (j.type == JointType::Ball) {
       t.jacobian[0] << -Eigen::Matrix3d::Identity(), skew(r_a);
       t.jacobian[1] << Eigen::Matrix3d::Identity(), -skew(r_b);
       c = separation;
@@ -236,7 +249,11 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
   }
-  island.system.solve(island.mass, island.rows, island.dv, island.dp);
+  if (reuse_factor) {
+    island.system.solve(island.rows, island.dv, island.dp);
+  } else {
+    island.system.solve(island.mass, island.rows, island.dv, island.dp);
+  }
   for (std::size_t b = 0; b < island.bodies.size(); ++b) {
     simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
     const Vec6 now = velocity_of(v) + island.dv[b];

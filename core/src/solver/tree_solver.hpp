@@ -52,9 +52,14 @@ class TreeSolver {
   const TreeCounts& counts() const { return counts_; }
   // One exact pass over this thread's islands: with_bias while solving, without while
   // relaxing. Writes the bodies' velocities and adds to the joints' lane impulses.
+  // reuse_relax_factor (a solve pass): the masses have not changed since the last relax pass
+  // of this step, so its factor is solved again (with its Jacobians; C and J v are new)
+  // instead of a new one. The bodies moved only by the position projection since, a Jacobian
+  // change of the order of the remaining joint error; it saves one factor per sub-step but
+  // the first.
   void pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
             SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
-            bool with_bias, const Share& share);
+            bool with_bias, bool reuse_relax_factor, const Share& share);
 
  private:
   struct Island {
@@ -66,10 +71,12 @@ class TreeSolver {
     std::vector<Eigen::Vector3d> dp;
     std::vector<Eigen::Vector3d> error;  // C per joint (padding rows 0), refilled each pass
     TreeSystem system;
+    bool relax_factored = false;  // the system holds the last pass's factor, a relax pass's
   };
   void solve_island(Island& island, const std::vector<JointSlot>& joints,
                     const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
-                    LaneSolver& lanes, const simd::SubstepContext& ctx, bool with_bias);
+                    LaneSolver& lanes, const simd::SubstepContext& ctx, bool with_bias,
+                    bool reuse_relax_factor);
   static void project_positions(Island& island, SolverBodies& sb,
                                 const simd::SubstepContext& ctx);
   std::vector<Island> islands_;
