@@ -129,7 +129,7 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
       ++counts_.loop_islands;  // a loop through the ground: two joints to static or kinematic
       continue;
     }
-    island.mass.resize(island.bodies.size());
+    island.inverse_mass.resize(island.bodies.size());
     ++counts_.tree_islands;
     counts_.tree_joints += island.joints.size();
     islands_.push_back(std::move(island));
@@ -185,17 +185,16 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   // the bodies have moved only by the position projection since.
   const bool reuse_factor = with_bias && reuse_relax_factor && island.relax_factored;
   island.relax_factored = !with_bias;
-  // M per body from the solver's mass record (the geometric-stiffness inertia included), so
+  // W = M^-1 per body from the solver's mass record (the geometric-stiffness inertia included), so
   // the exact pass and the Gauss-Seidel passes solve with the same masses.
   for (std::size_t b = 0; b < island.bodies.size() && !reuse_factor; ++b) {
     const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
-    Eigen::Matrix3d inv_i;
-    inv_i << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
-        m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
-    Mat6& mass = island.mass[b];
-    mass.setZero();
-    mass.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / double(m.inv_mass);
-    mass.bottomRightCorner<3, 3>() = inv_i.inverse();
+    Mat6& w = island.inverse_mass[b];
+    w.setZero();
+    w.topLeftCorner<3, 3>().diagonal().setConstant(double(m.inv_mass));
+    w.bottomRightCorner<3, 3>() << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4],
+        m.inv_inertia[3], m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4],
+        m.inv_inertia[5], m.inv_inertia[2];
   }
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
@@ -252,7 +251,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   if (reuse_factor) {
     island.system.solve(island.rows, island.dv, island.dp);
   } else {
-    island.system.solve(island.mass, island.rows, island.dv, island.dp);
+    island.system.solve(island.inverse_mass, island.rows, island.dv, island.dp);
   }
   for (std::size_t b = 0; b < island.bodies.size(); ++b) {
     simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];

@@ -66,7 +66,7 @@ class TreeSolver {
     std::vector<std::uint32_t> bodies;  // movable body slots (island-local order)
     std::vector<std::uint32_t> joints;  // joint slots
     std::vector<TreeJoint> rows;        // per joint, refilled each pass
-    std::vector<Mat6> mass;
+    std::vector<Mat6> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;
     std::vector<Eigen::Vector3d> error;  // C per joint (padding rows 0), refilled each pass

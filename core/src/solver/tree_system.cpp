@@ -74,8 +74,18 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   body_block_.resize(bodies);
   body_transfer_.resize(bodies);
   body_rhs_.resize(bodies);
+  joint_block_.resize(joints.size());
   joint_inverse_.resize(joints.size());
   joint_rhs_.resize(joints.size());
+  body_child_.assign(bodies, kNoChild);
+  body_child_side_.assign(bodies, 0);
+  for (const TreeNode& n : order_) {
+    if (!n.joint || n.parent < 0) continue;
+    const std::uint32_t body = order_[static_cast<std::size_t>(n.parent)].index;
+    body_child_[body] = body_child_[body] == kNoChild ? static_cast<std::int32_t>(n.index)
+                                                      : kManyChildren;
+    body_child_side_[body] = n.side;
+  }
   return true;
 }
 
@@ -104,9 +114,14 @@ void invert_body_block(Mat6& b) {
 
 }  // namespace
 
-void TreeSystem::factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints) {
-  // The blocks of H; each becomes its reduced block's inverse when its node is eliminated.
-  for (std::size_t b = 0; b < body_block_.size(); ++b) body_block_[b] = mass[b];
+void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
+                        const std::vector<TreeJoint>& joints) {
+  // The blocks of H; each becomes its reduced block's inverse when its node is eliminated. A
+  // body of many children sums M and their terms; the others start from W = M^-1.
+  for (std::size_t b = 0; b < body_block_.size(); ++b) {
+    body_block_[b] = inverse_mass[b];
+    if (body_child_[b] == kManyChildren) invert_body_block(body_block_[b]);
+  }
   for (std::size_t j = 0; j < joints.size(); ++j) {
     Eigen::Matrix3d d = -joints[j].gamma;
     for (int r = joints[j].rows; r < 3; ++r) {
@@ -114,32 +129,77 @@ void TreeSystem::factor(const std::vector<Mat6>& mass, const std::vector<TreeJoi
       d.col(r).setZero();
       d(r, r) = -1.0;
     }
-    joint_inverse_[j] = d;
+    joint_block_[j] = d;
   }
   const std::size_t n = order_.size();
   // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree.
+  // The factor is a chain of dependent small inverses from the leaves to the root, so its time
+  // is their latency: a body of one child joint (every link of a chain) is eliminated in joint
+  // space, where the chain's dependent work per link is one 3x3 inverse instead of three.
   for (std::size_t k = 0; k < n; ++k) {
     const TreeNode& node = order_[k];
     if (node.joint) {
       // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
-      Eigen::Matrix3d& inverse = joint_inverse_[node.index];
-      inverse = inverse.inverse().eval();
+      joint_inverse_[node.index] = joint_block_[node.index].inverse();
       if (node.parent < 0) continue;
-      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+      const std::uint32_t body = order_[static_cast<std::size_t>(node.parent)].index;
+      if (body_child_[body] != kManyChildren) continue;  // the body takes D itself
       const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
-      const Jac scaled = inverse * jac;
-      body_block_[parent.index].noalias() -= jac.transpose() * scaled;
-    } else {
-      // Reduced body blocks are M plus positive semidefinite terms.
-      Mat6& inverse = body_block_[node.index];
-      invert_body_block(inverse);
-      if (node.parent < 0) continue;
-      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
-      const Jac& jac = joints[parent.index].jacobian[node.side];  // E = J, 3x6
-      Mat63& transfer = body_transfer_[node.index];
-      transfer.noalias() = inverse * jac.transpose();
-      joint_inverse_[parent.index].noalias() -= jac * transfer;
+      const Jac scaled = joint_inverse_[node.index] * jac;
+      body_block_[body].noalias() -= jac.transpose() * scaled;
+      continue;
     }
+    Mat6& inverse = body_block_[node.index];
+    const std::int32_t child = body_child_[node.index];
+    const Jac* parent_jac = nullptr;
+    std::uint32_t parent_joint = 0;
+    if (node.parent >= 0) {
+      parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+      parent_jac = &joints[parent_joint].jacobian[node.side];  // J_p, 3x6
+    }
+    if (child == kManyChildren) {
+      // B = M + sum of J_c^T (-D_c^-1) J_c over the children, positive definite.
+      invert_body_block(inverse);
+      if (parent_jac == nullptr) continue;
+      Mat63& transfer = body_transfer_[node.index];
+      transfer.noalias() = inverse * parent_jac->transpose();
+      joint_block_[parent_joint].noalias() -= *parent_jac * transfer;
+      continue;
+    }
+    // At most one child c: B = M + J_c^T S J_c with S = -D_c^-1, so by Woodbury
+    //   B^-1 = W - U_c E^-1 U_c^T,  W = M^-1, U_c = W J_c^T, E = J_c U_c - D_c,
+    // and the parent's block loses J_p B^-1 J_p^T = K_pp - K_cp^T E^-1 K_cp with
+    // K_xy = J_x W J_y^T. Only E^-1 waits on the child; W and the K's do not.
+    Eigen::Matrix<double, 6, 3> to_parent;  // U_p = W J_p^T
+    if (parent_jac != nullptr) to_parent.noalias() = inverse * parent_jac->transpose();
+    if (child == kNoChild) {
+      if (parent_jac == nullptr) continue;
+      body_transfer_[node.index] = to_parent;
+      joint_block_[parent_joint].noalias() -= *parent_jac * to_parent;
+      continue;
+    }
+    const auto c = static_cast<std::uint32_t>(child);
+    const Jac& child_jac = joints[c].jacobian[body_child_side_[node.index]];
+    Mat63 to_child;  // U_c
+    to_child.noalias() = inverse * child_jac.transpose();
+    Eigen::Matrix3d e = child_jac * to_child;
+    e -= joint_block_[c];
+    const Eigen::Matrix3d e_inverse = e.inverse();
+    if (parent_jac != nullptr) {
+      Eigen::Matrix3d k_cp;
+      k_cp.noalias() = child_jac * to_parent;
+      Eigen::Matrix3d y;
+      y.noalias() = e_inverse * k_cp;
+      Eigen::Matrix3d k_pp;
+      k_pp.noalias() = *parent_jac * to_parent;
+      k_pp.noalias() -= k_cp.transpose() * y;
+      joint_block_[parent_joint] -= k_pp;
+      Mat63& transfer = body_transfer_[node.index];
+      transfer = to_parent;
+      transfer.noalias() -= to_child * y;
+    }
+    const Mat63 scaled = to_child * e_inverse;
+    inverse.noalias() -= scaled * to_child.transpose();
   }
 }
 

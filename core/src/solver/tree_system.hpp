@@ -53,16 +53,18 @@ class TreeSystem {
   // here.
   bool build(std::uint32_t bodies, const std::vector<TreeJoint>& joints);
 
-  // Factors H for these masses (M per body) and Jacobians and Gammas, leaves first.
-  void factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints);
+  // Factors H for these inverse masses (W = M^-1 per body: the solver keeps inverse masses,
+  // and a chain link is eliminated with W, tree_system.cpp) and Jacobians and Gammas, leaves
+  // first.
+  void factor(const std::vector<Mat6>& inverse_mass, const std::vector<TreeJoint>& joints);
   // With the last factor: the velocity change of every body (6 each: v then w) and the
   // impulse change of every joint (3 each; padding rows 0) for the joints' residuals r.
   void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
              std::vector<Eigen::Vector3d>& dp);
   // factor, then solve.
-  void solve(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints,
+  void solve(const std::vector<Mat6>& inverse_mass, const std::vector<TreeJoint>& joints,
              std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp) {
-    factor(mass, joints);
+    factor(inverse_mass, joints);
     solve(joints, dv, dp);
   }
 
@@ -76,8 +78,16 @@ class TreeSystem {
   std::vector<Mat6> body_block_;                            // B, then B^-1 once eliminated
   std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // B^-1 J^T towards the parent
   std::vector<Vec6> body_rhs_;
-  std::vector<Eigen::Matrix3d> joint_inverse_;
+  std::vector<Eigen::Matrix3d> joint_block_;    // D, the reduced joint block
+  std::vector<Eigen::Matrix3d> joint_inverse_;  // D^-1
   std::vector<Eigen::Vector3d> joint_rhs_;
+  // Per body its one child joint (a chain link), kNoChild (a leaf) or kManyChildren; and the
+  // side of that joint at the body. A body of at most one child is eliminated in joint space
+  // (tree_system.cpp, factor).
+  static constexpr std::int32_t kNoChild = -1;
+  static constexpr std::int32_t kManyChildren = -2;
+  std::vector<std::int32_t> body_child_;
+  std::vector<std::uint8_t> body_child_side_;
 };
 
 }  // namespace softstep::solver
