@@ -130,6 +130,9 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
       continue;
     }
     island.inverse_mass.resize(island.bodies.size());
+    island.dv.resize(island.bodies.size());
+    island.dp.resize(island.joints.size());
+    island.error.resize(island.joints.size());
     ++counts_.tree_islands;
     counts_.tree_joints += island.joints.size();
     islands_.push_back(std::move(island));
@@ -149,21 +152,14 @@ void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<Bo
   }
 }
 
-// After the relax: J dx = -C with the relax pass's factor (the same positions and Jacobians),
-// each row's C bounded by max_correction_speed * h as the biased pass bounds its speed; dx
-// moves the bodies' deltas (linear, then a first-order turn), not their velocities.
-void TreeSolver::project_positions(Island& island, SolverBodies& sb,
-                                   const simd::SubstepContext& ctx) {
-  const double step = double(ctx.max_correction_speed) * double(ctx.h);
-  for (std::size_t k = 0; k < island.joints.size(); ++k) {
-    island.rows[k].residual = island.error[k].cwiseMax(-step).cwiseMin(step);
-  }
-  // dp holds the position multipliers here; the impulses were already added.
-  std::vector<Eigen::Vector3d>& multipliers = island.dp;
-  island.system.solve(island.rows, island.dv, multipliers);
+// The relax pass's position projection: J dx = -C with the relax pass's factor (the same
+// positions and Jacobians), each row's C bounded by max_correction_speed * h as the biased
+// pass bounds its speed; dx (column 1 of the relax pass's two-column solve) moves the bodies'
+// deltas (linear, then a first-order turn), not their velocities.
+void TreeSolver::project_positions(Island& island, SolverBodies& sb) {
   for (std::size_t b = 0; b < island.bodies.size(); ++b) {
     simd::DeltaRecord& d = sb.delta[island.bodies[b] + 1];
-    const Vec6& dx = island.dv[b];
+    const Vec6 dx = island.dv_pair[b].col(1);
     for (int k = 0; k < 3; ++k) d.dp[k] = static_cast<float>(double(d.dp[k]) + dx[k]);
     const Eigen::Quaterniond q(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
     const Eigen::Quaterniond turn(0.0, 0.5 * dx[3], 0.5 * dx[4], 0.5 * dx[5]);
@@ -198,6 +194,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   }
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
+  const double step = bound * double(ctx.h);
   island.error.resize(island.joints.size());
   for (std::size_t k = 0; k < island.joints.size(); ++k) {
     const JointSlot& j = joints[island.joints[k]];
@@ -244,14 +241,18 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
       }
     }
     for (int r = t.rows; r < 3; ++r) c[r] = 0.0;  // padding rows (distance joints)
-    island.error[k] = c;
+    island.error[k] = c.cwiseMax(-step).cwiseMin(step);  // what the projection removes
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
   }
-  if (reuse_factor) {
+  if (!reuse_factor) island.system.factor(island.inverse_mass, island.rows);
+  if (with_bias) {
     island.system.solve(island.rows, island.dv, island.dp);
   } else {
-    island.system.solve(island.inverse_mass, island.rows, island.dv, island.dp);
+    // The velocities and the position projection together (project_positions).
+    island.system.solve(island.rows, island.error, island.dv_pair, island.dp_pair);
+    for (std::size_t b = 0; b < island.dv.size(); ++b) island.dv[b] = island.dv_pair[b].col(0);
+    for (std::size_t k = 0; k < island.dp.size(); ++k) island.dp[k] = island.dp_pair[k].col(0);
   }
   for (std::size_t b = 0; b < island.bodies.size(); ++b) {
     simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
@@ -267,7 +268,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
                             static_cast<float>(island.dp[k][2])};
     lanes.add_impulses(island.joints[k], delta);
   }
-  if (!with_bias) project_positions(island, sb, ctx);
+  if (!with_bias) project_positions(island, sb);
 }
 
 }  // namespace softstep::solver

@@ -69,7 +69,10 @@ class TreeSolver {
     std::vector<Mat6> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;
-    std::vector<Eigen::Vector3d> error;  // C per joint (padding rows 0), refilled each pass
+    // C per joint (padding rows 0) bounded by max_correction_speed * h, refilled each pass
+    std::vector<Eigen::Vector3d> error;
+    std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
+    std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
     TreeSystem system;
     bool relax_factored = false;  // the system holds the last pass's factor, a relax pass's
   };
@@ -77,8 +80,7 @@ class TreeSolver {
                     const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
                     LaneSolver& lanes, const simd::SubstepContext& ctx, bool with_bias,
                     bool reuse_relax_factor);
-  static void project_positions(Island& island, SolverBodies& sb,
-                                const simd::SubstepContext& ctx);
+  static void project_positions(Island& island, SolverBodies& sb);
   std::vector<Island> islands_;
   TreeCounts counts_;
 };

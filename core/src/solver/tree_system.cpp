@@ -74,9 +74,11 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   body_block_.resize(bodies);
   body_transfer_.resize(bodies);
   body_rhs_.resize(bodies);
+  body_rhs_pair_.resize(bodies);
   joint_block_.resize(joints.size());
   joint_inverse_.resize(joints.size());
   joint_rhs_.resize(joints.size());
+  joint_rhs_pair_.resize(joints.size());
   body_child_.assign(bodies, kNoChild);
   body_child_side_.assign(bodies, 0);
   for (const TreeNode& n : order_) {
@@ -203,12 +205,20 @@ void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
   }
 }
 
-void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
-                       std::vector<Eigen::Vector3d>& dp) {
-  for (Vec6& b : body_rhs_) b.setZero();
+template <int Columns>
+void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
+                               const std::vector<Eigen::Vector3d>* second,
+                               std::vector<Eigen::Matrix<double, 6, Columns>>& body_rhs,
+                               std::vector<Eigen::Matrix<double, 3, Columns>>& joint_rhs,
+                               std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                               std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const {
+  using JointColumns = Eigen::Matrix<double, 3, Columns>;
+  using BodyColumns = Eigen::Matrix<double, 6, Columns>;
+  for (BodyColumns& b : body_rhs) b.setZero();
   for (std::size_t j = 0; j < joints.size(); ++j) {
-    joint_rhs_[j] = -joints[j].residual;
-    for (int r = joints[j].rows; r < 3; ++r) joint_rhs_[j][r] = 0.0;
+    joint_rhs[j].col(0) = -joints[j].residual;
+    if constexpr (Columns == 2) joint_rhs[j].col(1) = -(*second)[j];
+    for (int r = joints[j].rows; r < 3; ++r) joint_rhs[j].row(r).setZero();
   }
   const std::size_t n = order_.size();
   for (std::size_t k = 0; k + 1 < n; ++k) {
@@ -216,11 +226,11 @@ void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& 
     const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
     if (node.joint) {
       const Jac& jac = joints[node.index].jacobian[node.side];
-      const Eigen::Vector3d scaled = joint_inverse_[node.index] * joint_rhs_[node.index];
-      body_rhs_[parent.index].noalias() -= jac.transpose() * scaled;
+      const JointColumns scaled = joint_inverse_[node.index] * joint_rhs[node.index];
+      body_rhs[parent.index].noalias() -= jac.transpose() * scaled;
     } else {
-      joint_rhs_[parent.index].noalias() -=
-          body_transfer_[node.index].transpose() * body_rhs_[node.index];
+      joint_rhs[parent.index].noalias() -=
+          body_transfer_[node.index].transpose() * body_rhs[node.index];
     }
   }
   dv.resize(body_block_.size());
@@ -228,25 +238,36 @@ void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& 
   // The root, then every node from its parent's solution (root first).
   const TreeNode& root = order_[n - 1];
   if (root.joint) {
-    dp[root.index].noalias() = joint_inverse_[root.index] * joint_rhs_[root.index];
+    dp[root.index].noalias() = joint_inverse_[root.index] * joint_rhs[root.index];
   } else {
-    dv[root.index].noalias() = body_block_[root.index] * body_rhs_[root.index];
+    dv[root.index].noalias() = body_block_[root.index] * body_rhs[root.index];
   }
   for (std::size_t k = n - 1; k-- > 0;) {
     const TreeNode& node = order_[k];
     const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
     if (node.joint) {
       const Jac& jac = joints[node.index].jacobian[node.side];
-      const Eigen::Vector3d rhs = joint_rhs_[node.index] - jac * dv[parent.index];
+      const JointColumns rhs = joint_rhs[node.index] - jac * dv[parent.index];
       dp[node.index].noalias() = joint_inverse_[node.index] * rhs;
     } else {
       const Jac& jac = joints[parent.index].jacobian[node.side];
-      const Vec6 rhs = body_rhs_[node.index] - jac.transpose() * dp[parent.index];
+      const BodyColumns rhs = body_rhs[node.index] - jac.transpose() * dp[parent.index];
       dv[node.index].noalias() = body_block_[node.index] * rhs;
     }
   }
   // The unknown of a joint is lambda = -dP.
-  for (Eigen::Vector3d& p : dp) p = -p;
+  for (JointColumns& p : dp) p = -p;
+}
+
+void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
+                       std::vector<Eigen::Vector3d>& dp) {
+  solve_columns<1>(joints, nullptr, body_rhs_, joint_rhs_, dv, dp);
+}
+
+void TreeSystem::solve(const std::vector<TreeJoint>& joints,
+                       const std::vector<Eigen::Vector3d>& second, std::vector<Vec6x2>& dv,
+                       std::vector<Vec3x2>& dp) {
+  solve_columns<2>(joints, &second, body_rhs_pair_, joint_rhs_pair_, dv, dp);
 }
 
 }  // namespace softstep::solver
