@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
@@ -16,6 +17,7 @@
 #include "tool/contact_report.hpp"
 #include "tool/plan_report.hpp"
 #include "tool/profile_recording.hpp"
+#include "tool/recording_overhead.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
@@ -80,6 +82,12 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--record", o.record_path,
                   "record the run (softstep replay FILE checks it step by step)")
       ->type_name("FILE");
+  cmd->add_option("--recording-overhead", o.recording_overhead_path,
+                  "measure what recording costs: a twin of the world records to FILE while the "
+                  "world does not, both stepped alternately with the same contacts; prints the "
+                  "step() calls' medians and their per-step ratio")
+      ->type_name("FILE")
+      ->excludes("--record");
   cmd->add_option("--trace", o.trace_path,
                   "write Chrome / Perfetto trace events: one slice per stage per thread")
       ->type_name("FILE");
@@ -117,12 +125,15 @@ int profile_command(ProfileOptions o) {
   check_writable_file("--trace", trace_path);
   check_writable_file("--save", o.save_path);
   check_writable_file("--record", o.record_path);
+  check_writable_file("--recording-overhead", o.recording_overhead_path);
 
   World world(settings);
   const SceneRun run = build_scene(world, choice);
   world.set_profiling(true);
   if (!o.save_path.empty()) save_scene(world, o.save_path);
   if (!o.record_path.empty()) world.start_recording(o.record_path);
+  std::optional<RecordingTwin> twin;
+  if (!o.recording_overhead_path.empty()) twin.emplace(world, o.recording_overhead_path);
 
   const double dt = 1.0 / 60.0;
   StepSamples samples;
@@ -149,10 +160,13 @@ int profile_command(ProfileOptions o) {
                                   collision_ms * 1e3);
         rows = contact_rows(world, contacts);
       }
+      const bool twin_first = twin && RecordingTwin::goes_first(i);
+      if (twin_first) twin->step(dt, contacts, bool(run.contacts));
       const auto t0 = std::chrono::steady_clock::now();
       if (run.contacts) world.step(dt, contacts);
       else world.step(dt);
       const auto t1 = std::chrono::steady_clock::now();
+      if (twin && !twin_first) twin->step(dt, contacts, bool(run.contacts));
       const StepProfile& profile = world.last_step_profile();
       const double call_start_us = microseconds(t0 - run_start);
       if (run.contacts) {
@@ -253,6 +267,7 @@ int profile_command(ProfileOptions o) {
         limit_now, worst_limit_run);
   }
   if (run.reading) std::printf("%s", run.reading().c_str());
+  if (twin) twin->finish(world, samples.step_ms);
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {

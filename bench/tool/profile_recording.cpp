@@ -21,7 +21,8 @@ namespace {
 // a result, so they apply from the first record.)
 void refuse_result_changing_options(const ProfileOptions& o) {
   for (const char* option : {"--steps", "--substeps", "--iterations", "--relax",
-                             "--no-warm-start", "--no-sleep", "--save", "--record"}) {
+                             "--no-warm-start", "--no-sleep", "--save", "--record",
+                             "--recording-overhead"}) {
     if (o.command != nullptr && o.command->count(option) > 0) {
       throw UsageError(std::string(option) + " cannot be used with a recording (" +
                        o.scene.scene +

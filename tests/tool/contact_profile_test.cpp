@@ -131,6 +131,22 @@ TEST(ContactProfile, PileCountsItsBodiesAndContacts) {
   EXPECT_EQ(j["contacts"]["median_rows"].get<double>(), 3.0 * points);  // friction, no rolling
 }
 
+// --recording-overhead: the twin that recorded stayed the world's twin (equal state hashes, or
+// the tool fails), and its file replays to that same state.
+TEST(ContactProfile, RecordingOverheadTwinRecordsTheSameRun) {
+  const std::string dir = scratch_dir("recording_overhead");
+  std::string out;
+  const nlohmann::json j = profile_json(
+      "pyramid --base 4 --steps 10 --recording-overhead " + dir + "/twin.rec", "ro_json", &out);
+  EXPECT_NE(out.find("ms/step recording vs"), std::string::npos) << out;
+  const ToolRun replay = run_tool("replay " + dir + "/twin.rec");
+  EXPECT_EQ(replay.exit_code, 0) << replay.err;
+  EXPECT_NE(replay.out.find("10 steps and 0 other calls replayed, every step matched; state hash " +
+                            j["state_hash"].get<std::string>()),
+            std::string::npos)
+      << replay.out;
+}
+
 TEST(ContactProfile, BadContactSceneOptionsAreNamed) {
   const struct {
     const char* arguments;
@@ -143,6 +159,8 @@ TEST(ContactProfile, BadContactSceneOptionsAreNamed) {
        "--count: a ragdoll, vehicle, suspension-bridge or pile option, not for scene pyramid"},
       {"profile pile --count 0", "--count: value 0"},
       {"profile pile --base 3", "--base: a pyramid option, not for scene pile"},
+      {"profile pyramid --record a.rec --recording-overhead b.rec",
+       "--record excludes --recording-overhead"},
   };
   for (const auto& line : lines) {
     const ToolRun run = run_tool(line.arguments);
