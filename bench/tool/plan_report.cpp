@@ -91,7 +91,9 @@ nlohmann::json plan_json(const StepPlan& plan) {
                             {"parts", k.parts},
                             {"rows_per_joint", k.rows_per_joint},
                             {"batches", k.batches},
-                            {"joints", k.joints}});
+                            {"joints", k.joints},
+                            {"lane_bytes", k.lane_bytes},
+                            {"impulse_bytes", k.impulse_bytes}});
   }
   j["rows_per_pass"] = plan.rows_per_pass;
   j["contacts"] = {{"manifolds", plan.contact_manifolds},

@@ -21,6 +21,7 @@
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
+#include "tool/traffic_report.hpp"
 
 namespace softstep::tool {
 
@@ -76,6 +77,11 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--json", o.json_path, "write the figures as one JSON object (with the plan)")
       ->type_name("FILE");
   cmd->add_option("--csv", o.csv_path, "write one row per step")->type_name("FILE");
+  cmd->add_option("--bandwidth", o.bandwidth_gbps,
+                  "this machine's triad bandwidth (softstep_bandwidth_bench): the memory "
+                  "section then shows the fraction of the bound each stage reached")
+      ->type_name("GB/S")
+      ->check(CLI::Range(0.001, 1e6));
   cmd->add_option("--save", o.save_path,
                   "write the scene as built (before the first step) as a scene file")
       ->type_name("FILE");
@@ -268,6 +274,8 @@ int profile_command(ProfileOptions o) {
   }
   if (run.reading) std::printf("%s", run.reading().c_str());
   if (twin) twin->finish(world, samples.step_ms);
+  const StepTraffic traffic = step_traffic(world);
+  print_traffic(traffic, stage_median, ms, o.bandwidth_gbps);
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {
@@ -308,6 +316,7 @@ int profile_command(ProfileOptions o) {
                               {"plan", plan_json(world.step_plan())},
                               {"awake_bodies", world.step_plan().awake_bodies},
                               {"sleeping_islands", world.step_plan().sleeping_islands},
+                              {"memory", traffic_json(traffic, stage_median, ms, o.bandwidth_gbps)},
                               {"state_hash", hash}};
     write_file(json_path, j.dump(2) + "\n");
   }
