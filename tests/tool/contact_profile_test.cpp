@@ -147,6 +147,13 @@ TEST(ContactProfile, RecordingOverheadTwinRecordsTheSameRun) {
       << replay.out;
 }
 
+TEST(ContactProfile, HelpNamesTheContactScenesAndTheirOptions) {
+  const ToolRun help = run_tool("profile --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* word : {"pyramid", "pile", "--base", "--count", "--recording-overhead"})
+    EXPECT_NE(help.out.find(word), std::string::npos) << word;
+}
+
 TEST(ContactProfile, BadContactSceneOptionsAreNamed) {
   const struct {
     const char* arguments;
