@@ -50,27 +50,38 @@ class TreeSolver {
              const std::vector<BodySlot>& bodies, const LaneSolver& lanes);
   bool empty() const { return islands_.empty(); }
   const TreeCounts& counts() const { return counts_; }
-  // One exact pass over this thread's islands: with_bias while solving, without while
-  // relaxing. Writes the bodies' velocities and adds to the joints' lane impulses.
-  // reuse_relax_factor (a solve pass): the masses have not changed since the last relax pass
-  // of this step, so its factor is solved again (with its Jacobians; C and J v are new)
-  // instead of a new one. The bodies moved only by the position projection since, a Jacobian
-  // change of the order of the remaining joint error; it saves one factor per sub-step but
-  // the first.
+  // Which exact pass this is.
+  struct Pass {
+    bool with_bias = true;  // the solve pass (with the bias), or the relax pass (without)
+    // The step's first pass: the joints' step-start anchors are turned into the world frame
+    // once here (the bodies' step-start poses do not change until the step ends).
+    bool step_start = false;
+    // A solve pass whose masses have not changed since this step's last relax pass: that
+    // pass's factor is solved again (with its Jacobians; C and J v are new) instead of a new
+    // one. The bodies moved only by the position projection since, a Jacobian change of the
+    // order of the remaining joint error; it saves one factor per sub-step but the first.
+    bool reuse_relax_factor = false;
+  };
+  // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
+  // joints' lane impulses; the relax pass also moves the bodies' positions.
   void pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
             SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
-            bool with_bias, bool reuse_relax_factor, const Share& share);
+            Pass which, const Share& share);
 
  private:
   struct Island {
     std::vector<std::uint32_t> bodies;  // movable body slots (island-local order)
     std::vector<std::uint32_t> joints;  // joint slots
+    std::vector<std::int32_t> solver_a, solver_b;  // per joint its bodies' solver records
     std::vector<TreeJoint> rows;        // per joint, refilled each pass
     std::vector<Mat6> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;
     // C per joint (padding rows 0) bounded by max_correction_speed * h, refilled each pass
     std::vector<Eigen::Vector3d> error;
+    // Per joint, set at the step's start: both anchors turned by their body's step-start
+    // orientation, and the step-start offset from body a to body b.
+    std::vector<Eigen::Vector3d> anchor_a, anchor_b, offset;
     std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
     std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
     TreeSystem system;
@@ -78,8 +89,7 @@ class TreeSolver {
   };
   void solve_island(Island& island, const std::vector<JointSlot>& joints,
                     const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
-                    LaneSolver& lanes, const simd::SubstepContext& ctx, bool with_bias,
-                    bool reuse_relax_factor);
+                    LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which);
   static void project_positions(Island& island, SolverBodies& sb);
   std::vector<Island> islands_;
   TreeCounts counts_;
