@@ -3,8 +3,8 @@
 // sub-step. In a mixed world the Gauss-Seidel passes still run over these joints first; when
 // every awake joint is in such an island the plan leaves them out (step_plan.cpp). Either way
 // the exact pass moves each island's velocities and impulses from wherever they are to the
-// exact solution of the sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C bounded per row by
-// max_correction_speed while solving, no bias while relaxing. The relax pass then also
+// exact solution of the sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C
+// bounded per row by max_correction_speed while solving, no bias while relaxing. The relax pass then also
 // projects the positions: with the same factor it solves J dx = -C and moves the bodies by dx
 // (no velocity change), bounded per row by max_correction_speed * h. Without it the exact
 // velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per
