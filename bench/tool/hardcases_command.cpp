@@ -49,8 +49,7 @@ CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& o) {
                   "the bounds stay those of the default mode")
       ->check(CLI::IsMember(solver_names()))
       ->capture_default_str();
-  cmd->add_option("--case", o.only, "only the cases whose name contains TEXT")
-      ->type_name("TEXT");
+  cmd->add_option("--case", o.only, "only the cases whose name contains TEXT")->type_name("TEXT");
   cmd->add_flag("--quick", o.quick, "skip the 10,000-link chains");
   cmd->add_option("--view", o.view_dir,
                   "write a viewer page per case into DIR (index.html lists them)")

@@ -183,8 +183,7 @@ void TreeSolver::project_positions(Island& island, SolverBodies& sb) {
 
 void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& joints,
                               const std::vector<BodySlot>& bodies, SolverBodies& sb,
-                              LaneSolver& lanes, const simd::SubstepContext& ctx,
-                              Pass which) {
+                              LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which) {
   const bool with_bias = which.with_bias;
   // A solve pass may reuse the factor of the last sub-step's relax pass (pass() says when):
   // the bodies have moved only by the position projection since.
@@ -197,8 +196,8 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
     Mat6& w = island.inverse_mass[b];
     w.topLeftCorner<3, 3>().diagonal().setConstant(double(m.inv_mass));
     w.bottomRightCorner<3, 3>() << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4],
-        m.inv_inertia[3], m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4],
-        m.inv_inertia[5], m.inv_inertia[2];
+        m.inv_inertia[3], m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5],
+        m.inv_inertia[2];
   }
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
@@ -255,7 +254,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
         t.gamma(0, 0) = 1.0;
       }
     }
-    for (int r = t.rows; r < 3; ++r) c[r] = 0.0;  // padding rows (distance joints)
+    for (int r = t.rows; r < 3; ++r) c[r] = 0.0;         // padding rows (distance joints)
     island.error[k] = c.cwiseMax(-step).cwiseMin(step);  // what the projection removes
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;

@@ -4,11 +4,11 @@
 // every awake joint is in such an island the plan leaves them out (step_plan.cpp). Either way
 // the exact pass moves each island's velocities and impulses from wherever they are to the
 // exact solution of the sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C
-// bounded per row by max_correction_speed while solving, no bias while relaxing. The relax pass then also
-// projects the positions: with the same factor it solves J dx = -C and moves the bodies by dx
-// (no velocity change), bounded per row by max_correction_speed * h. Without it the exact
-// velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per
-// sub-step as it cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a
+// bounded per row by max_correction_speed while solving, no bias while relaxing. The relax
+// pass then also projects the positions: with the same factor it solves J dx = -C and moves
+// the bodies by dx (no velocity change), bounded per row by max_correction_speed * h. Without it
+// the exact velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad
+// per sub-step as it cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a
 // joint 0.19 m.
 //
 // Handles rigid ball joints and rigid distance joints. An island (movable bodies linked by
@@ -35,7 +35,7 @@ class LaneSolver;
 namespace softstep::solver {
 
 struct TreeCounts {
-  std::size_t tree_islands = 0;   // solved exactly
+  std::size_t tree_islands = 0;  // solved exactly
   std::size_t tree_joints = 0;
   // A loop through movable bodies, or through the ground (more than one joint to a static or
   // kinematic body): iterative.
@@ -70,10 +70,10 @@ class TreeSolver {
 
  private:
   struct Island {
-    std::vector<std::uint32_t> bodies;  // movable body slots (island-local order)
-    std::vector<std::uint32_t> joints;  // joint slots
+    std::vector<std::uint32_t> bodies;             // movable body slots (island-local order)
+    std::vector<std::uint32_t> joints;             // joint slots
     std::vector<std::int32_t> solver_a, solver_b;  // per joint its bodies' solver records
-    std::vector<TreeJoint> rows;        // per joint, refilled each pass
+    std::vector<TreeJoint> rows;                   // per joint, refilled each pass
     std::vector<Mat6> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;

@@ -84,8 +84,8 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   for (const TreeNode& n : order_) {
     if (!n.joint || n.parent < 0) continue;
     const std::uint32_t body = order_[static_cast<std::size_t>(n.parent)].index;
-    body_child_[body] = body_child_[body] == kNoChild ? static_cast<std::int32_t>(n.index)
-                                                      : kManyChildren;
+    body_child_[body] =
+        body_child_[body] == kNoChild ? static_cast<std::int32_t>(n.index) : kManyChildren;
     body_child_side_[body] = n.side;
   }
   return true;
@@ -104,8 +104,7 @@ using Mat63 = Eigen::Matrix<double, 6, 3>;
 void invert_body_block(Mat6& b) {
   const Eigen::Matrix3d a_inverse = b.topLeftCorner<3, 3>().inverse();
   const Eigen::Matrix3d g = a_inverse * b.topRightCorner<3, 3>();  // A^-1 C
-  const Eigen::Matrix3d s =
-      b.bottomRightCorner<3, 3>() - b.topRightCorner<3, 3>().transpose() * g;
+  const Eigen::Matrix3d s = b.bottomRightCorner<3, 3>() - b.topRightCorner<3, 3>().transpose() * g;
   const Eigen::Matrix3d s_inverse = s.inverse();
   const Eigen::Matrix3d g_s = g * s_inverse;  // A^-1 C S^-1
   b.topLeftCorner<3, 3>() = a_inverse + g_s * g.transpose();
@@ -145,7 +144,7 @@ void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
       joint_inverse_[node.index] = joint_block_[node.index].inverse();
       if (node.parent < 0) continue;
       const std::uint32_t body = order_[static_cast<std::size_t>(node.parent)].index;
-      if (body_child_[body] != kManyChildren) continue;  // the body takes D itself
+      if (body_child_[body] != kManyChildren) continue;         // the body takes D itself
       const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
       const Jac scaled = joint_inverse_[node.index] * jac;
       body_block_[body].noalias() -= jac.transpose() * scaled;
