@@ -3,6 +3,7 @@
 // pass bit-identical at every SIMD width and thread count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -243,6 +244,39 @@ TEST(TreeSolve, BitIdenticalAcrossWidthsAndThreads) {
       }
     }
   }
+}
+
+// When every awake joint is solved exactly the Gauss-Seidel passes are left out and each
+// sub-step's impulses start at zero: the joints' readings must still be the exact solve's.
+// A 20-link rigid chain hanging at rest: its top joint carries the weight of every link below
+// it, 20 x 1 kg x g, up on the top link (static equilibrium; the exact solve leaves no spring
+// stretch to add or take any: 1e-3 relative covers the float velocities). Without the exact
+// pass's impulses the reading is 0; with a warm start left in, a multiple of it.
+TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
+  WorldSettings settings;
+  settings.solver = SolverMode::DirectForTrees;
+  World world(settings);
+  scenes::ChainOptions o;
+  o.links = 20;
+  o.layout = scenes::ChainLayout::Hanging;
+  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  const StepPlan& plan = world.step_plan();
+  const auto runs = [&](PlanStage stage) {
+    return std::find(plan.stages.begin(), plan.stages.end(), stage) != plan.stages.end();
+  };
+  EXPECT_TRUE(runs(PlanStage::ClearImpulses));
+  EXPECT_TRUE(runs(PlanStage::TreeSolve));
+  EXPECT_FALSE(runs(PlanStage::WarmStart));
+  EXPECT_FALSE(runs(PlanStage::Solve));
+  EXPECT_FALSE(runs(PlanStage::Relax));
+  for (int i = 0; i < 60; ++i) world.step(kDt);
+  const double weight = 20.0 * 9.81;
+  const Eigen::Vector3d force = world.joint_reading(scene.joints.front()).force;
+  EXPECT_NEAR(force.y(), weight, 1e-3 * weight);
+  EXPECT_NEAR(force.x(), 0.0, 1e-3 * weight);
+  EXPECT_NEAR(force.z(), 0.0, 1e-3 * weight);
+  // The last joint holds the last link only.
+  EXPECT_NEAR(world.joint_reading(scene.joints.back()).force.y(), 9.81, 1e-3 * 9.81);
 }
 
 // More sub-steps always pay (issue 14, item 3), on the 100-link mass-ratio chain released

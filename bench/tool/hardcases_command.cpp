@@ -44,6 +44,12 @@ CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& o) {
   cmd->add_option("--simd", o.simd, "SIMD width")
       ->check(CLI::IsMember(simd_names()))
       ->capture_default_str();
+  cmd->add_option("--solver", o.solver,
+                  "WorldSettings::solver for every case (the direct-for-trees cases set theirs); "
+                  "the bounds stay those of the default mode")
+      ->check(CLI::IsMember(solver_names()))
+      ->capture_default_str();
+  cmd->add_option("--case", o.only, "only the cases whose name contains TEXT")->type_name("TEXT");
   cmd->add_flag("--quick", o.quick, "skip the 10,000-link chains");
   cmd->add_option("--view", o.view_dir,
                   "write a viewer page per case into DIR (index.html lists them)")
@@ -58,6 +64,7 @@ CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& o) {
 int hardcases_command(const HardcasesOptions& options) {
   WorldSettings settings;
   settings.simd = parse_simd(options.simd);
+  settings.solver = parse_solver(options.solver);
   const bool quick = options.quick;
 
   const auto cases = scenes::hard_cases();
@@ -72,6 +79,7 @@ int hardcases_command(const HardcasesOptions& options) {
   for (const auto& c : cases) {
     bar.update(done++);
     if (quick && c.heavy) continue;
+    if (c.name.find(options.only) == std::string::npos) continue;
     // With --view, the case's first world is recorded (a case that runs several worlds, one
     // per spring, shows its first).
     std::unique_ptr<ViewRecorder> recorder;

@@ -9,6 +9,8 @@ namespace softstep::tool {
 
 struct HardcasesOptions {
   std::string simd = "best";
+  std::string solver = "iterative";
+  std::string only;  // non-empty: only the cases whose name contains it
   bool quick = false;
   std::string view_dir;  // non-empty: a viewer page per case goes there
   ViewLimits limits;
@@ -16,7 +18,8 @@ struct HardcasesOptions {
 
 // Declares `softstep hardcases` and its options on the tool's app.
 CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& options);
-// softstep hardcases [--simd W] [--quick]: runs the hard-case suite and prints its table.
+// softstep hardcases [--simd W] [--solver S] [--case TEXT] [--quick]: runs the hard-case
+// suite and prints its table.
 int hardcases_command(const HardcasesOptions& options);
 
 }  // namespace softstep::tool

@@ -427,7 +427,12 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeSolve)) {
         stage(Stage::Solve, [&] {
-          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, true, share);
+          // The masses change at sub-step 1 when the inertia is refreshed.
+          const bool same_masses = sub > 0 && !(sub == 1 && refresh_inertia);
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
+                       {.with_bias = true, .step_start = sub == 0,
+                        .reuse_relax_factor = same_masses},
+                       share);
           solver::team_barrier(share);
         });
       }
@@ -450,7 +455,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeRelax)) {
         stage(Stage::Relax, [&] {
-          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, false, share);
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, {.with_bias = false},
+                       share);
           solver::team_barrier(share);
         });
       }

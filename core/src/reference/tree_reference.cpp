@@ -12,13 +12,13 @@ ExactSolution solve_tree(const SoftSystem& s) {
   // Nodes: the bodies of finite mass.
   const int blocks = static_cast<int>(s.body_slots.size());
   std::vector<std::int32_t> node(static_cast<std::size_t>(blocks), -1);
-  std::vector<solver::Mat6> mass;
+  std::vector<solver::Mat6> inverse_mass;
   const Eigen::MatrixXd dense_mass(s.mass);
   for (int b = 0; b < blocks; ++b) {
     const solver::Mat6 m = dense_mass.block<6, 6>(6 * b, 6 * b);
     if (m.isZero(0.0)) continue;  // static or kinematic
-    node[static_cast<std::size_t>(b)] = static_cast<std::int32_t>(mass.size());
-    mass.push_back(m);
+    node[static_cast<std::size_t>(b)] = static_cast<std::int32_t>(inverse_mass.size());
+    inverse_mass.push_back(m.inverse());
   }
   const Eigen::SparseMatrix<double, Eigen::RowMajor> jac(s.jacobian);
   const Eigen::VectorXd residual = s.jacobian * s.velocity_before + s.bias;
@@ -52,14 +52,14 @@ ExactSolution solve_tree(const SoftSystem& s) {
     row += count;
   }
   solver::TreeSystem system;
-  if (!system.build(static_cast<std::uint32_t>(mass.size()), joints)) {
+  if (!system.build(static_cast<std::uint32_t>(inverse_mass.size()), joints)) {
     throw std::invalid_argument(
         "solve_tree: the joints do not form a tree (a loop through movable bodies or through "
         "the ground)");
   }
   std::vector<solver::Vec6> dv;
   std::vector<Eigen::Vector3d> dp;
-  system.solve(mass, joints, dv, dp);
+  system.solve(inverse_mass, joints, dv, dp);
   ExactSolution x;
   x.impulse.resize(s.rows());
   row = 0;

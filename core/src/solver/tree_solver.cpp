@@ -129,7 +129,20 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
       ++counts_.loop_islands;  // a loop through the ground: two joints to static or kinematic
       continue;
     }
-    island.mass.resize(island.bodies.size());
+    // W's linear block off its diagonal and its v-w coupling blocks stay zero: each pass
+    // writes only the rest (zeroing 288 bytes per body per pass was a tenth of the gather).
+    island.inverse_mass.assign(island.bodies.size(), Mat6::Zero());
+    island.dv.resize(island.bodies.size());
+    island.dp.resize(island.joints.size());
+    island.error.resize(island.joints.size());
+    island.anchor_a.resize(island.joints.size());
+    island.anchor_b.resize(island.joints.size());
+    island.offset.resize(island.joints.size());
+    for (std::uint32_t j : island.joints) {
+      const JointSlot& slot = joints[j];
+      island.solver_a.push_back(solver_index(bodies[slot.body_a], slot.body_a));
+      island.solver_b.push_back(solver_index(bodies[slot.body_b], slot.body_b));
+    }
     ++counts_.tree_islands;
     counts_.tree_joints += island.joints.size();
     islands_.push_back(std::move(island));
@@ -138,30 +151,23 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
 
 void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                       SolverBodies& solver_bodies, LaneSolver& lanes,
-                      const simd::SubstepContext& ctx, bool with_bias, const Share& share) {
+                      const simd::SubstepContext& ctx, Pass which, const Share& share) {
   // Islands are disjoint in bodies and joints: each thread solves its slice alone. One long
   // chain is one island and runs on one thread.
   const Slice mine = slice_of(islands_.size(), share);
   for (std::size_t i = mine.begin; i < mine.end; ++i) {
-    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, with_bias);
+    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, which);
   }
 }
 
-// After the relax: J dx = -C with the relax pass's factor (the same positions and Jacobians),
-// each row's C bounded by max_correction_speed * h as the biased pass bounds its speed; dx
-// moves the bodies' deltas (linear, then a first-order turn), not their velocities.
-void TreeSolver::project_positions(Island& island, SolverBodies& sb,
-                                   const simd::SubstepContext& ctx) {
-  const double step = double(ctx.max_correction_speed) * double(ctx.h);
-  for (std::size_t k = 0; k < island.joints.size(); ++k) {
-    island.rows[k].residual = island.error[k].cwiseMax(-step).cwiseMin(step);
-  }
-  // dp holds the position multipliers here; the impulses were already added.
-  std::vector<Eigen::Vector3d>& multipliers = island.dp;
-  island.system.solve(island.rows, island.dv, multipliers);
+// The relax pass's position projection: J dx = -C with the relax pass's factor (the same
+// positions and Jacobians), each row's C bounded by max_correction_speed * h as the biased
+// pass bounds its speed; dx (column 1 of the relax pass's two-column solve) moves the bodies'
+// deltas (linear, then a first-order turn), not their velocities.
+void TreeSolver::project_positions(Island& island, SolverBodies& sb) {
   for (std::size_t b = 0; b < island.bodies.size(); ++b) {
     simd::DeltaRecord& d = sb.delta[island.bodies[b] + 1];
-    const Vec6& dx = island.dv[b];
+    const Vec6 dx = island.dv_pair[b].col(1);
     for (int k = 0; k < 3; ++k) d.dp[k] = static_cast<float>(double(d.dp[k]) + dx[k]);
     const Eigen::Quaterniond q(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
     const Eigen::Quaterniond turn(0.0, 0.5 * dx[3], 0.5 * dx[4], 0.5 * dx[5]);
@@ -177,39 +183,56 @@ void TreeSolver::project_positions(Island& island, SolverBodies& sb,
 
 void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& joints,
                               const std::vector<BodySlot>& bodies, SolverBodies& sb,
-                              LaneSolver& lanes, const simd::SubstepContext& ctx,
-                              bool with_bias) {
-  // M per body from the solver's mass record (the geometric-stiffness inertia included), so
+                              LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which) {
+  const bool with_bias = which.with_bias;
+  // A solve pass may reuse the factor of the last sub-step's relax pass (pass() says when):
+  // the bodies have moved only by the position projection since.
+  const bool reuse_factor = with_bias && which.reuse_relax_factor && island.relax_factored;
+  island.relax_factored = !with_bias;
+  // W = M^-1 per body from the solver's mass record (the geometric-stiffness inertia included), so
   // the exact pass and the Gauss-Seidel passes solve with the same masses.
-  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+  for (std::size_t b = 0; b < island.bodies.size() && !reuse_factor; ++b) {
     const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
-    Eigen::Matrix3d inv_i;
-    inv_i << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
-        m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
-    Mat6& mass = island.mass[b];
-    mass.setZero();
-    mass.topLeftCorner<3, 3>() = Eigen::Matrix3d::Identity() / double(m.inv_mass);
-    mass.bottomRightCorner<3, 3>() = inv_i.inverse();
+    Mat6& w = island.inverse_mass[b];
+    w.topLeftCorner<3, 3>().diagonal().setConstant(double(m.inv_mass));
+    w.bottomRightCorner<3, 3>() << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4],
+        m.inv_inertia[3], m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5],
+        m.inv_inertia[2];
   }
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
-  island.error.resize(island.joints.size());
+  const double step = bound * double(ctx.h);
+  if (which.step_start) {
+    for (std::size_t k = 0; k < island.joints.size(); ++k) {
+      const JointSlot& j = joints[island.joints[k]];
+      const BodySlot& a = bodies[j.body_a];
+      const BodySlot& b = bodies[j.body_b];
+      island.anchor_a[k] = a.orientation * j.local_anchor_a;
+      island.anchor_b[k] = b.orientation * j.local_anchor_b;
+      island.offset[k] = b.position - a.position;
+    }
+  }
   for (std::size_t k = 0; k < island.joints.size(); ++k) {
     const JointSlot& j = joints[island.joints[k]];
-    const BodySlot& a = bodies[j.body_a];
-    const BodySlot& b = bodies[j.body_b];
-    const std::int32_t ia = solver_index(a, j.body_a), ib = solver_index(b, j.body_b);
+    const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
     const PoseNow pa = pose_now(sb.delta[static_cast<std::size_t>(ia)]);
     const PoseNow pb = pose_now(sb.delta[static_cast<std::size_t>(ib)]);
     // As the kernels: step-start anchors in double, turned by the rotation since.
-    const Eigen::Vector3d r_a = pa.dq * (a.orientation * j.local_anchor_a);
-    const Eigen::Vector3d r_b = pb.dq * (b.orientation * j.local_anchor_b);
-    const Eigen::Vector3d separation = (b.position - a.position) + (pb.dp - pa.dp) + (r_b - r_a);
+    const Eigen::Vector3d r_a = pa.dq * island.anchor_a[k];
+    const Eigen::Vector3d r_b = pb.dq * island.anchor_b[k];
+    const Eigen::Vector3d separation = island.offset[k] + (pb.dp - pa.dp) + (r_b - r_a);
     const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
     const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
     TreeJoint& t = island.rows[k];
     Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    if (j.type == JointType::Ball) {
+    if (reuse_factor) {
+      // The factor's Jacobians stay (the relax pass's); only C and J v are today's.
+      if (j.type == JointType::Ball) {
+        c = separation;
+      } else {
+        c[0] = separation.norm() - std::get<DistanceJointDef>(j.def).rest_length;
+      }
+    } else if (j.type == JointType::Ball) {
       t.jacobian[0] << -Eigen::Matrix3d::Identity(), skew(r_a);
       t.jacobian[1] << Eigen::Matrix3d::Identity(), -skew(r_b);
       c = separation;
@@ -231,12 +254,20 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
         t.gamma(0, 0) = 1.0;
       }
     }
-    for (int r = t.rows; r < 3; ++r) c[r] = 0.0;  // padding rows (distance joints)
-    island.error[k] = c;
+    for (int r = t.rows; r < 3; ++r) c[r] = 0.0;         // padding rows (distance joints)
+    island.error[k] = c.cwiseMax(-step).cwiseMin(step);  // what the projection removes
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
   }
-  island.system.solve(island.mass, island.rows, island.dv, island.dp);
+  if (!reuse_factor) island.system.factor(island.inverse_mass, island.rows);
+  if (with_bias) {
+    island.system.solve(island.rows, island.dv, island.dp);
+  } else {
+    // The velocities and the position projection together (project_positions).
+    island.system.solve(island.rows, island.error, island.dv_pair, island.dp_pair);
+    for (std::size_t b = 0; b < island.dv.size(); ++b) island.dv[b] = island.dv_pair[b].col(0);
+    for (std::size_t k = 0; k < island.dp.size(); ++k) island.dp[k] = island.dp_pair[k].col(0);
+  }
   for (std::size_t b = 0; b < island.bodies.size(); ++b) {
     simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
     const Vec6 now = velocity_of(v) + island.dv[b];
@@ -251,7 +282,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
                             static_cast<float>(island.dp[k][2])};
     lanes.add_impulses(island.joints[k], delta);
   }
-  if (!with_bias) project_positions(island, sb, ctx);
+  if (!with_bias) project_positions(island, sb);
 }
 
 }  // namespace softstep::solver

@@ -1,14 +1,14 @@
 // WorldSettings::solver = DirectForTrees / Auto: which islands are solved exactly
 // (tree_system.hpp) and the passes that do it, after the Gauss-Seidel solve and relax of each
-// sub-step. The Gauss-Seidel passes still run over these joints first (they warm-start the
-// lanes and cost little beside the exact pass); the exact pass then moves each island's
-// velocities and impulses from wherever the passes left them to the exact solution of the
-// sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C bounded per row by
-// max_correction_speed while solving, no bias while relaxing. The relax pass then also
-// projects the positions: with the same factor it solves J dx = -C and moves the bodies by dx
-// (no velocity change), bounded per row by max_correction_speed * h. Without it the exact
-// velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per
-// sub-step as it cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a
+// sub-step. In a mixed world the Gauss-Seidel passes still run over these joints first; when
+// every awake joint is in such an island the plan leaves them out (step_plan.cpp). Either way
+// the exact pass moves each island's velocities and impulses from wherever they are to the
+// exact solution of the sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C
+// bounded per row by max_correction_speed while solving, no bias while relaxing. The relax
+// pass then also projects the positions: with the same factor it solves J dx = -C and moves
+// the bodies by dx (no velocity change), bounded per row by max_correction_speed * h. Without it
+// the exact velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad
+// per sub-step as it cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a
 // joint 0.19 m.
 //
 // Handles rigid ball joints and rigid distance joints. An island (movable bodies linked by
@@ -35,7 +35,7 @@ class LaneSolver;
 namespace softstep::solver {
 
 struct TreeCounts {
-  std::size_t tree_islands = 0;   // solved exactly
+  std::size_t tree_islands = 0;  // solved exactly
   std::size_t tree_joints = 0;
   // A loop through movable bodies, or through the ground (more than one joint to a static or
   // kinematic body): iterative.
@@ -50,28 +50,47 @@ class TreeSolver {
              const std::vector<BodySlot>& bodies, const LaneSolver& lanes);
   bool empty() const { return islands_.empty(); }
   const TreeCounts& counts() const { return counts_; }
-  // One exact pass over this thread's islands: with_bias while solving, without while
-  // relaxing. Writes the bodies' velocities and adds to the joints' lane impulses.
+  // Which exact pass this is.
+  struct Pass {
+    bool with_bias = true;  // the solve pass (with the bias), or the relax pass (without)
+    // The step's first pass: the joints' step-start anchors are turned into the world frame
+    // once here (the bodies' step-start poses do not change until the step ends).
+    bool step_start = false;
+    // A solve pass whose masses have not changed since this step's last relax pass: that
+    // pass's factor is solved again (with its Jacobians; C and J v are new) instead of a new
+    // one. The bodies moved only by the position projection since, a Jacobian change of the
+    // order of the remaining joint error; it saves one factor per sub-step but the first.
+    bool reuse_relax_factor = false;
+  };
+  // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
+  // joints' lane impulses; the relax pass also moves the bodies' positions.
   void pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
             SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
-            bool with_bias, const Share& share);
+            Pass which, const Share& share);
 
  private:
   struct Island {
-    std::vector<std::uint32_t> bodies;  // movable body slots (island-local order)
-    std::vector<std::uint32_t> joints;  // joint slots
-    std::vector<TreeJoint> rows;        // per joint, refilled each pass
-    std::vector<Mat6> mass;
+    std::vector<std::uint32_t> bodies;             // movable body slots (island-local order)
+    std::vector<std::uint32_t> joints;             // joint slots
+    std::vector<std::int32_t> solver_a, solver_b;  // per joint its bodies' solver records
+    std::vector<TreeJoint> rows;                   // per joint, refilled each pass
+    std::vector<Mat6> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;
-    std::vector<Eigen::Vector3d> error;  // C per joint (padding rows 0), refilled each pass
+    // C per joint (padding rows 0) bounded by max_correction_speed * h, refilled each pass
+    std::vector<Eigen::Vector3d> error;
+    // Per joint, set at the step's start: both anchors turned by their body's step-start
+    // orientation, and the step-start offset from body a to body b.
+    std::vector<Eigen::Vector3d> anchor_a, anchor_b, offset;
+    std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
+    std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
     TreeSystem system;
+    bool relax_factored = false;  // the system holds the last pass's factor, a relax pass's
   };
   void solve_island(Island& island, const std::vector<JointSlot>& joints,
                     const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
-                    LaneSolver& lanes, const simd::SubstepContext& ctx, bool with_bias);
-  static void project_positions(Island& island, SolverBodies& sb,
-                                const simd::SubstepContext& ctx);
+                    LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which);
+  static void project_positions(Island& island, SolverBodies& sb);
   std::vector<Island> islands_;
   TreeCounts counts_;
 };

@@ -16,7 +16,6 @@
 // SIMD width and thread count.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <cstdint>
 #include <vector>
@@ -26,6 +25,8 @@ namespace softstep::solver {
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Jac = Eigen::Matrix<double, 3, 6>;  // a joint's rows against one body (v, then w)
+using Vec6x2 = Eigen::Matrix<double, 6, 2>;
+using Vec3x2 = Eigen::Matrix<double, 3, 2>;
 
 // One joint as the tree solve sees it. body[s] is the island-local index of side s's body,
 // or -1 when that body does not move (static, kinematic): its velocity is already in r.
@@ -54,31 +55,57 @@ class TreeSystem {
   // here.
   bool build(std::uint32_t bodies, const std::vector<TreeJoint>& joints);
 
-  // Factors H for these masses (M per body) and Jacobians and Gammas, leaves first.
-  void factor(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints);
+  // Factors H for these inverse masses (W = M^-1 per body: the solver keeps inverse masses,
+  // and a chain link is eliminated with W, tree_system.cpp) and Jacobians and Gammas, leaves
+  // first.
+  void factor(const std::vector<Mat6>& inverse_mass, const std::vector<TreeJoint>& joints);
   // With the last factor: the velocity change of every body (6 each: v then w) and the
   // impulse change of every joint (3 each; padding rows 0) for the joints' residuals r.
   void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
              std::vector<Eigen::Vector3d>& dp);
+  // With the last factor, two right sides in one pass: column 0 from the joints' residuals r,
+  // column 1 from `second` (one per joint). The pass's time is its chain of dependent small
+  // products from the leaves to the root and back, which two independent columns share: the
+  // relax pass solves its velocities and the position projection together.
+  void solve(const std::vector<TreeJoint>& joints, const std::vector<Eigen::Vector3d>& second,
+             std::vector<Vec6x2>& dv, std::vector<Vec3x2>& dp);
   // factor, then solve.
-  void solve(const std::vector<Mat6>& mass, const std::vector<TreeJoint>& joints,
+  void solve(const std::vector<Mat6>& inverse_mass, const std::vector<TreeJoint>& joints,
              std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp) {
-    factor(mass, joints);
+    factor(inverse_mass, joints);
     solve(joints, dv, dp);
   }
 
   std::size_t nodes() const { return order_.size(); }
 
  private:
+  template <int Columns>
+  void solve_columns(const std::vector<TreeJoint>& joints,
+                     const std::vector<Eigen::Vector3d>* second,
+                     std::vector<Eigen::Matrix<double, 6, Columns>>& body_rhs,
+                     std::vector<Eigen::Matrix<double, 3, Columns>>& joint_rhs,
+                     std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                     std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const;
+
   std::vector<TreeNode> order_;
-  // Scratch, sized once: per body the reduced block and its Cholesky factor, per joint the
-  // reduced block's inverse; the right sides.
-  std::vector<Mat6> body_block_;
-  std::vector<Eigen::LLT<Mat6>> body_factor_;
-  std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // D_b^-1 J^T towards the parent
+  // Scratch, sized once in build: per body the reduced block, then its inverse, and the
+  // transfer towards its parent joint; per joint the reduced block's inverse; the right sides.
+  // Fixed-size blocks and hand-ordered 3x3 arithmetic (tree_system.cpp says why).
+  std::vector<Mat6> body_block_;                            // B, then B^-1 once eliminated
+  std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // B^-1 J^T towards the parent
   std::vector<Vec6> body_rhs_;
-  std::vector<Eigen::Matrix3d> joint_inverse_;
+  std::vector<Vec6x2> body_rhs_pair_;
+  std::vector<Eigen::Matrix3d> joint_block_;    // D, the reduced joint block
+  std::vector<Eigen::Matrix3d> joint_inverse_;  // D^-1
   std::vector<Eigen::Vector3d> joint_rhs_;
+  std::vector<Vec3x2> joint_rhs_pair_;
+  // Per body its one child joint (a chain link), kNoChild (a leaf) or kManyChildren; and the
+  // side of that joint at the body. A body of at most one child is eliminated in joint space
+  // (tree_system.cpp, factor).
+  static constexpr std::int32_t kNoChild = -1;
+  static constexpr std::int32_t kManyChildren = -2;
+  std::vector<std::int32_t> body_child_;
+  std::vector<std::uint8_t> body_child_side_;
 };
 
 }  // namespace softstep::solver
