@@ -311,7 +311,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
                            validation::format(validation::kMaxSubstep) + "] s");
   }
   const float h = static_cast<float>(substep);
-  validation::contacts("step", w, contacts, w.contact_cache_next.step_keys());
+  validation::contacts("step", w, contacts, w.contact_cache_next);
   wake_touched(w, contacts);
   // A step that colours and packs, or lists the bodies anew, first touches fresh memory: its
   // time says nothing about the thread count.

@@ -23,6 +23,28 @@ bool ContactCache::insert(const ContactPairKey& key, const CachedManifold& manif
   return true;
 }
 
+std::size_t ContactCache::index_step(std::span<const ContactManifold> manifolds,
+                                     const ContactCache& previous) {
+  // A scene at rest hands the same manifolds in the same order step after step: their keys
+  // are then the previous step's, which were unique, at the same positions, and so is the index.
+  bool same = manifolds.size() == previous.size();
+  for (std::size_t i = 0; same && i < manifolds.size(); ++i) {
+    same = contact_pair_key(manifolds[i]) == previous.entries_[i].key;
+  }
+  if (same) {
+    index_ = previous.index_;  // the same size: a copy into the memory it has
+    return kNoRepeat;
+  }
+  index_.reset(manifolds.size());
+  for (std::size_t i = 0; i < manifolds.size(); ++i) {
+    if (index_.insert(contact_pair_key(manifolds[i]), static_cast<std::uint32_t>(i)) !=
+        ContactKeyIndex::kAbsent) {
+      return i;
+    }
+  }
+  return kNoRepeat;
+}
+
 void ContactCache::erase_body(std::uint64_t body_word) {
   std::erase_if(entries_, [body_word](const ContactCacheEntry& e) {
     return e.key.low == body_word || e.key.high == body_word;

@@ -44,8 +44,11 @@ class ContactCache {
   std::size_t size() const { return entries_.size(); }
   std::span<const ContactCacheEntry> entries() const { return entries_; }
 
-  // The entry of this key, or nullptr.
-  const ContactCacheEntry* find(const ContactPairKey& key) const {
+  // The entry of this key, or nullptr. hint: where the key likely is (a manifold's position in
+  // its step: scenes tend to hand their manifolds in the same order every step), looked at
+  // before the index.
+  const ContactCacheEntry* find(const ContactPairKey& key, std::size_t hint = ~std::size_t{0}) const {
+    if (hint < entries_.size() && entries_[hint].key == key) return &entries_[hint];
     const std::uint32_t at = index_.find(key);
     return at == ContactKeyIndex::kAbsent ? nullptr : &entries_[at];
   }
@@ -56,11 +59,13 @@ class ContactCache {
   // Drops the entries that name this body (BodyId as generation << 32 | slot).
   void erase_body(std::uint64_t body_word);
 
-  // A step writes its cache in two parts: its validation fills the index with the step's keys
-  // (the value of each is its manifold's position), then, once the world may change, the
-  // entries are sized to the step's manifolds and each entry is written at its manifold's
-  // position (each by one thread). Until then the cache is scratch.
-  ContactKeyIndex& step_keys() { return index_; }
+  // A step writes its next cache in two parts. Its validation indexes the step's keys (the
+  // value of each is its manifold's position) with index_step, which returns the first
+  // position whose key repeats an earlier one's (or kNoRepeat); then, once the world may
+  // change, the entries are sized to the step's manifolds and each entry is written at its
+  // manifold's position (each by one thread). Until then the cache is scratch.
+  static constexpr std::size_t kNoRepeat = ~std::size_t{0};
+  std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous);
   void size_for_step(std::size_t manifolds) { entries_.resize(manifolds); }
   ContactCacheEntry& step_entry(std::size_t manifold) { return entries_[manifold]; }
 

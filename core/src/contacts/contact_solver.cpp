@@ -50,8 +50,8 @@ struct Match {
   double sign = 1.0;
 };
 
-Match find_match(const ContactManifold& m, const ContactCache& cache) {
-  const ContactCacheEntry* entry = cache.find(contact_pair_key(m));
+Match find_match(const ContactManifold& m, std::uint32_t index, const ContactCache& cache) {
+  const ContactCacheEntry* entry = cache.find(contact_pair_key(m), index);
   if (entry == nullptr) return {};
   return {&entry->manifold, entry->manifold.body_a == m.body_a.index ? 1.0 : -1.0};
 }
@@ -350,7 +350,7 @@ class ContactSolverImpl final : public ContactSolver {
     for (std::size_t k = mine.begin; k < mine.end; ++k) {
       const std::uint32_t index = left_out_[k];
       const ContactManifold& m = step_.manifolds[index];
-      carry_over(m, find_match(m, *step_.previous), start_reading(index), next_entry(index));
+      carry_over(m, find_match(m, index, *step_.previous), start_reading(index), next_entry(index));
     }
   }
 
@@ -400,7 +400,7 @@ class ContactSolverImpl final : public ContactSolver {
         for (std::size_t e = first; e < last; ++e) {
           const std::uint32_t index = entries_[e].manifold;
           const ContactManifold& m = step_.manifolds[index];
-          matches_[index] = find_match(m, *step_.previous);
+          matches_[index] = find_match(m, index, *step_.previous);
           fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
                        step_.warm_start ? matches_[index] : Match{});
         }

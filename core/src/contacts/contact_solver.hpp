@@ -25,7 +25,7 @@ struct ContactStep {
   std::span<const ContactManifold> manifolds;
   const std::vector<BodySlot>* bodies = nullptr;
   const ContactCache* previous = nullptr;  // the last step's warm-start cache
-  ContactCache* next = nullptr;  // its step_keys() filled by the step's validation
+  ContactCache* next = nullptr;  // indexed by the step's validation (ContactCache::index_step)
   std::vector<ContactReading>* readings = nullptr;
   bool warm_start = true;
 };

@@ -106,13 +106,14 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
 }  // namespace
 
 void contacts(std::string_view call, const World::Impl& w,
-              std::span<const ContactManifold> manifolds, ContactKeyIndex& keys) {
-  keys.reset(manifolds.size());
+              std::span<const ContactManifold> manifolds, ContactCache& next) {
+  // Keys only read ids, so they are safe to index before the fields are checked; errors are
+  // still reported for the first manifold in input order that breaks any rule.
+  const std::size_t repeat = next.index_step(manifolds, w.contact_cache);
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
     const ContactManifold& m = manifolds[i];
     if (!passes(w, m)) describe_failure(call, w, m, i);
-    if (keys.insert(contact_pair_key(m), static_cast<std::uint32_t>(i)) !=
-        ContactKeyIndex::kAbsent) {
+    if (i == repeat) {
       reject(call, "contacts[" + std::to_string(i) + "].key", std::to_string(m.key),
              "another manifold of this step has the same body pair and key");
     }

@@ -5,15 +5,15 @@
 #include <span>
 #include <string_view>
 
-#include "contacts/contact_key_index.hpp"
+#include "contacts/contact_cache.hpp"
 #include "softstep/contacts.hpp"
 #include "world_impl.hpp"
 
 namespace softstep::validation {
 
-// keys: filled with each manifold's body pair and key, valued by its position (it finds the
-// repeated ones; the step then indexes its next warm-start cache with it).
+// next: the step's next warm-start cache, whose index of the manifolds' keys this fills
+// (ContactCache::index_step; it finds the repeated keys). Scratch until the step stores it.
 void contacts(std::string_view call, const World::Impl& world,
-              std::span<const ContactManifold> manifolds, ContactKeyIndex& keys);
+              std::span<const ContactManifold> manifolds, ContactCache& next);
 
 }  // namespace softstep::validation
