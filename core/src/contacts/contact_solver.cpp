@@ -65,6 +65,23 @@ int matching_point(const Match& match, std::uint32_t feature_id) {
   return -1;
 }
 
+// Lanes are filled and read in the solver's order (by colour), so the manifolds, their cache
+// entries and their bodies are met at random places: each is asked from memory this many
+// manifolds ahead, so that the misses overlap instead of stalling one after another.
+constexpr std::size_t kFetchAhead = 8;
+
+template <class T>
+void fetch(const T& object) {
+  const char* p = reinterpret_cast<const char*>(&object);
+  for (std::size_t at = 0; at < sizeof(T); at += 64) __builtin_prefetch(p + at);
+}
+
+template <class T>
+void fetch_for_writing(T& object) {
+  char* p = reinterpret_cast<char*>(&object);
+  for (std::size_t at = 0; at < sizeof(T); at += 64) __builtin_prefetch(p + at, 1);
+}
+
 template <class Group>
 Group empty_group() {
   Group g{};
@@ -398,6 +415,7 @@ class ContactSolverImpl final : public ContactSolver {
         const std::size_t first = r.first_entry + k * V;
         const std::size_t last = std::min<std::size_t>(first + V, r.end_entry);
         for (std::size_t e = first; e < last; ++e) {
+          if (e + kFetchAhead < r.end_entry) fetch_for_packing(entries_[e + kFetchAhead].manifold);
           const std::uint32_t index = entries_[e].manifold;
           const ContactManifold& m = step_.manifolds[index];
           matches_[index] = find_match(m, index, *step_.previous);
@@ -414,6 +432,10 @@ class ContactSolverImpl final : public ContactSolver {
       const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
       for (std::size_t k = slice.begin; k < slice.end; ++k) {
         const simd::ContactLanes<V>& g = batch.groups[r.begin + k];
+        const std::size_t first = r.first_entry + k * V;
+        for (std::size_t e = first; e < first + V && e + kFetchAhead < r.end_entry; ++e) {
+          fetch_for_storing(entries_[e + kFetchAhead].manifold);
+        }
         for (int lane = 0; lane < V; ++lane) {
           const std::uint32_t index = g.id[lane];
           if (index == kPadding) continue;
@@ -422,6 +444,20 @@ class ContactSolverImpl final : public ContactSolver {
         }
       }
     }
+  }
+
+  void fetch_for_packing(std::uint32_t index) const {
+    const ContactManifold& m = step_.manifolds[index];
+    fetch(m);
+    if (index < step_.previous->size()) fetch(step_.previous->entries()[index]);
+    fetch((*step_.bodies)[m.body_a.index].orientation);
+    fetch((*step_.bodies)[m.body_b.index].orientation);
+  }
+
+  void fetch_for_storing(std::uint32_t index) const {
+    fetch(step_.manifolds[index]);
+    fetch_for_writing((*step_.readings)[index]);
+    fetch_for_writing(step_.next->step_entry(index));
   }
 
   ContactReading& start_reading(std::uint32_t index) {
