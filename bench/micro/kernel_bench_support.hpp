@@ -215,8 +215,8 @@ void run(benchmark::State& state) {
 // The rigid variant of the ball and distance kernels (no per-lane spring switch, no limit rows).
 constexpr JointFeatures kRigid{RowKind::Rigid, false, false};
 
-// (total links, links per chain)
-void scenes(benchmark::internal::Benchmark* b) {
+// (total links, links per chain). Unused where only the contact benchmarks include this.
+[[maybe_unused]] void scenes(benchmark::internal::Benchmark* b) {
   b->Args({10000, 10000})
       ->Args({100000, 100000})
       ->Args({100000, 100})

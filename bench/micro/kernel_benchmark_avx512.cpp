@@ -2,6 +2,7 @@
 // that one run lists every width side by side. This file alone is compiled with the AVX-512
 // flags the library's 16-lane kernel files use; on a CPU without AVX-512 its benchmarks are
 // skipped with a message and never execute an AVX-512 instruction.
+#include "contact_kernel_bench_support.hpp"
 #include "kernel_bench_support.hpp"
 
 namespace softstep::simd {
@@ -76,6 +77,22 @@ SOFTSTEP_AVX512_BENCH(DistanceJointGroup, Solve, kRigid)
 SOFTSTEP_AVX512_BENCH(DistanceJointGroup, Relax, kRigid)
     ->Name("DistanceJointGroup/Relax/avx512/rigid")
     ->Apply(scenes);
+
+// The contact kernels (contact_kernel_benchmark.cpp) at 16 lanes.
+template <ContactPass P>
+void run_contacts_avx512(benchmark::State& state) {
+  if (!cpu_has_avx512()) {
+    state.SkipWithError("skipped: this CPU lacks AVX-512 (F, CD, DQ, BW and VL)");
+    return;
+  }
+  run_contacts<Avx512, P>(state);
+}
+BENCHMARK(run_contacts_avx512<ContactPass::Solve>)
+    ->Name("ContactLanes/Solve/avx512")
+    ->Apply(pyramid_bases);
+BENCHMARK(run_contacts_avx512<ContactPass::Relax>)
+    ->Name("ContactLanes/Relax/avx512")
+    ->Apply(pyramid_bases);
 
 }  // namespace
 }  // namespace softstep::simd

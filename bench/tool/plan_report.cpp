@@ -49,6 +49,14 @@ void print_plan(const StepPlan& plan) {
               "loop, %zu with other joints\n",
               solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints,
               plan.loop_islands, plan.other_islands);
+  if (plan.contact_manifolds > 0) {
+    std::printf("  contacts       %zu manifolds, %zu points, %zu colours, %zu in overflow; rows: "
+                "normal%s%s; %s\n",
+                plan.contact_manifolds, plan.contact_points, plan.contact_colors,
+                plan.contact_overflow, plan.contact_friction ? ", friction" : "",
+                plan.contact_rolling ? ", rolling" : "",
+                plan.contact_restitution ? "restitution pass" : "no restitution pass");
+  }
   std::printf("  kernel variants (type, features: batches, joints)\n");
   for (const PlanKernel& k : plan.kernels) {
     std::printf("    %-9s %-40s %8u batches %9u joints\n", joint_type_name(k.type),
@@ -83,9 +91,18 @@ nlohmann::json plan_json(const StepPlan& plan) {
                             {"parts", k.parts},
                             {"rows_per_joint", k.rows_per_joint},
                             {"batches", k.batches},
-                            {"joints", k.joints}});
+                            {"joints", k.joints},
+                            {"lane_bytes", k.lane_bytes},
+                            {"impulse_bytes", k.impulse_bytes}});
   }
   j["rows_per_pass"] = plan.rows_per_pass;
+  j["contacts"] = {{"manifolds", plan.contact_manifolds},
+                   {"points", plan.contact_points},
+                   {"colors", plan.contact_colors},
+                   {"overflow", plan.contact_overflow},
+                   {"friction", plan.contact_friction},
+                   {"rolling", plan.contact_rolling},
+                   {"restitution", plan.contact_restitution}};
   return j;
 }
 

@@ -7,17 +7,21 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "softstep/scene_file.hpp"
+#include "tool/contact_report.hpp"
 #include "tool/plan_report.hpp"
 #include "tool/profile_recording.hpp"
+#include "tool/recording_overhead.hpp"
 #include "tool/progress_bar.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
+#include "tool/traffic_report.hpp"
 
 namespace softstep::tool {
 
@@ -28,6 +32,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 double elapsed_ms(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
       .count();
+}
+
+double microseconds(std::chrono::steady_clock::duration d) {
+  return std::chrono::duration<double, std::micro>(d).count();
 }
 
 }  // namespace
@@ -69,12 +77,23 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
   cmd->add_option("--json", o.json_path, "write the figures as one JSON object (with the plan)")
       ->type_name("FILE");
   cmd->add_option("--csv", o.csv_path, "write one row per step")->type_name("FILE");
+  cmd->add_option("--bandwidth", o.bandwidth_gbps,
+                  "this machine's triad bandwidth (softstep_bandwidth_bench): the memory "
+                  "section then shows the fraction of the bound each stage reached")
+      ->type_name("GB/S")
+      ->check(CLI::Range(0.001, 1e6));
   cmd->add_option("--save", o.save_path,
                   "write the scene as built (before the first step) as a scene file")
       ->type_name("FILE");
   cmd->add_option("--record", o.record_path,
                   "record the run (softstep replay FILE checks it step by step)")
       ->type_name("FILE");
+  cmd->add_option("--recording-overhead", o.recording_overhead_path,
+                  "measure what recording costs: a twin of the world records to FILE while the "
+                  "world does not, both stepped alternately with the same contacts; prints the "
+                  "step() calls' medians and their per-step ratio")
+      ->type_name("FILE")
+      ->excludes("--record");
   cmd->add_option("--trace", o.trace_path,
                   "write Chrome / Perfetto trace events: one slice per stage per thread")
       ->type_name("FILE");
@@ -112,19 +131,22 @@ int profile_command(ProfileOptions o) {
   check_writable_file("--trace", trace_path);
   check_writable_file("--save", o.save_path);
   check_writable_file("--record", o.record_path);
+  check_writable_file("--recording-overhead", o.recording_overhead_path);
 
   World world(settings);
   const SceneRun run = build_scene(world, choice);
   world.set_profiling(true);
   if (!o.save_path.empty()) save_scene(world, o.save_path);
   if (!o.record_path.empty()) world.start_recording(o.record_path);
+  std::optional<RecordingTwin> twin;
+  if (!o.recording_overhead_path.empty()) twin.emplace(world, o.recording_overhead_path);
 
   const double dt = 1.0 / 60.0;
   StepSamples samples;
-  // The scene's own narrow phase (vehicle, suspension-bridge): timed apart from the step, as
-  // a user's collision detection is.
-  std::vector<double> contact_ms;
-  std::size_t manifolds = 0;
+  // The scene's contacts, and its narrow phase (vehicle, suspension-bridge: its own; pyramid,
+  // pile: Bullet's) timed apart from the step, as a user's collision detection is.
+  ContactSamples contact_samples;
+  std::vector<double> contact_load_ms;  // per step, for the CSV
   samples.tracing = !trace_path.empty();
   double worst_error_run = 0.0, worst_limit_run = 0.0;
   const long error_every = std::max(1L, steps / 100);  // ~100 samples, outside the timed step
@@ -133,19 +155,36 @@ int profile_command(ProfileOptions o) {
     ProgressBar bar("profile", steps);
     for (long i = 0; i < steps; ++i) {
       std::span<const ContactManifold> contacts;
+      double rows = kNaN;
       if (run.contacts) {
         const auto c0 = std::chrono::steady_clock::now();
         contacts = run.contacts();
-        contact_ms.push_back(elapsed_ms(c0));
-        manifolds = contacts.size();
+        const double collision_ms = elapsed_ms(c0);
+        contact_samples.collision_ms.push_back(collision_ms);
+        if (samples.tracing)
+          samples.trace.add_slice("collision", 0, microseconds(c0 - run_start),
+                                  collision_ms * 1e3);
+        rows = contact_rows(world, contacts);
       }
+      const bool twin_first = twin && RecordingTwin::goes_first(i);
+      if (twin_first) twin->step(dt, contacts, bool(run.contacts));
       const auto t0 = std::chrono::steady_clock::now();
       if (run.contacts) world.step(dt, contacts);
       else world.step(dt);
       const auto t1 = std::chrono::steady_clock::now();
-      samples.add(world.last_step_profile(),
-                  std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                  std::chrono::duration<double, std::micro>(t0 - run_start).count());
+      if (twin && !twin_first) twin->step(dt, contacts, bool(run.contacts));
+      const StepProfile& profile = world.last_step_profile();
+      const double call_start_us = microseconds(t0 - run_start);
+      if (run.contacts) {
+        contact_samples.add_step(world, rows);
+        contact_load_ms.push_back(profile.contact_load_ms);
+        if (samples.tracing && profile.contact_load_ms > 0.0)
+          samples.trace.add_slice("contact_load", 0, call_start_us, profile.contact_load_ms * 1e3);
+      }
+      // The stages count from the threads' start, which follows the contact load (the input
+      // checks and the plan before it are not traced: the slices start that much early).
+      samples.add(profile, std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                  call_start_us + profile.contact_load_ms * 1e3);
       if (run.after_step) run.after_step();
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);
@@ -163,14 +202,20 @@ int profile_command(ProfileOptions o) {
   // the plan runs no relax pass (springs only: springs are not relaxed).
   const std::vector<PlanStage>& planned = world.step_plan().stages;
   const bool relaxed = std::find(planned.begin(), planned.end(), PlanStage::Relax) != planned.end();
-  const double row_solves = run.rows * settings.substeps *
-                            (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));
+  const double joint_row_solves =
+      run.rows * settings.substeps *
+      (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));
+  // Contacts are relaxed whenever there are relax passes (rigid, unbiased normal rows).
+  const double contact_rows_per_pass = contact_samples.median_rows();
+  const double contact_row_solves = contact_rows_per_pass * settings.substeps *
+                                    (settings.solve_iterations + settings.relax_iterations);
+  const double row_solves = joint_row_solves + contact_row_solves;
   const StageTimes stage_median = stage_medians(samples.stage_ms);
   const double stretch = run.stretch_ratio ? run.stretch_ratio() : kNaN;
   const double limit_now = run.limit_violation_deg ? run.limit_violation_deg() : kNaN;
 
   std::printf("scene            %s\n", run.description.c_str());
-  std::printf("bodies / joints  %zu / %zu (%.0f constraint rows)\n", world.body_count(),
+  std::printf("bodies / joints  %zu / %zu (%.0f joint rows)\n", world.body_count(),
               world.joint_count(), run.rows);
   std::printf(
       "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, simd "
@@ -191,20 +236,25 @@ int profile_command(ProfileOptions o) {
               layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
   std::printf("awake bodies     %zu, sleeping islands %zu\n", world.step_plan().awake_bodies,
               world.step_plan().sleeping_islands);
+  print_contacts_line(contact_samples, world.step_plan(), world.settings());
   if (show_plan) {
     std::printf("\n");
     print_plan(world.step_plan());
   }
   print_stage_table(stage_median, ms);
-  std::printf("  %-22s %8.3f  (median of %ld steps)\n", "step", ms, steps);
-  if (run.contacts) {
-    std::printf("  %-22s %8.3f  (the scene's own narrow phase before each step, %zu manifolds "
-                "in the last; not in the step)\n",
-                "scene contacts", median(contact_ms), manifolds);
-  }
+  print_contact_stage_lines(contact_samples, ms);
+  std::printf("  %-22s %8.3f  (wall time around World::step, median of %ld steps)\n",
+              "step() call", ms, steps);
   std::printf("\n");
-  std::printf("row solves / s   %.3g (ns per row solve %.2f)\n", row_solves / (ms * 1e-3),
-              ms * 1e6 / row_solves);
+  if (contact_row_solves > 0.0) {
+    std::printf("row solves / s   %.3g (ns per row solve %.2f; per step %.0f joint + %.0f contact "
+                "row solves)\n",
+                row_solves / (ms * 1e-3), ms * 1e6 / row_solves, joint_row_solves,
+                contact_row_solves);
+  } else {
+    std::printf("row solves / s   %.3g (ns per row solve %.2f)\n", row_solves / (ms * 1e-3),
+                ms * 1e6 / row_solves);
+  }
   std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(samples.wait_share));
   print_serial_share(samples);
   std::printf(
@@ -223,6 +273,9 @@ int profile_command(ProfileOptions o) {
         limit_now, worst_limit_run);
   }
   if (run.reading) std::printf("%s", run.reading().c_str());
+  if (twin) twin->finish(world, samples.step_ms);
+  const StepTraffic traffic = step_traffic(world);
+  print_traffic(traffic, stage_median, ms, o.bandwidth_gbps);
   std::printf("state hash       %016llx\n", static_cast<unsigned long long>(world.state_hash()));
 
   if (!json_path.empty()) {
@@ -244,6 +297,9 @@ int profile_command(ProfileOptions o) {
                               {"ms_per_step", ms},
                               {"stage_ms", stage_json(stage_median)},
                               {"rows_per_second", row_solves / (ms * 1e-3)},
+                              {"joint_rows", run.rows},
+                              {"contact_rows", run.contacts ? contact_rows_per_pass : kNaN},
+                              {"ns_per_row_solve", ms * 1e6 / row_solves},
                               {"barrier_wait_share", median(samples.wait_share)},
                               {"serial_share", median(samples.serial_share)},
                               {"colors", layout.colors_used},
@@ -254,14 +310,25 @@ int profile_command(ProfileOptions o) {
                               {"stretch_ratio", stretch},
                               {"limit_violation_deg", limit_now},
                               {"limit_violation_run_deg", run.limit_violation_deg ? worst_limit_run : kNaN},
-                              {"scene_contacts_ms", run.contacts ? median(contact_ms) : kNaN},
+                              {"scene_contacts_ms",
+                               run.contacts ? median(contact_samples.collision_ms) : kNaN},
+                              {"contacts", contacts_json(contact_samples, world.step_plan(), world.settings())},
                               {"plan", plan_json(world.step_plan())},
                               {"awake_bodies", world.step_plan().awake_bodies},
                               {"sleeping_islands", world.step_plan().sleeping_islands},
+                              {"memory", traffic_json(traffic, stage_median, ms, o.bandwidth_gbps)},
                               {"state_hash", hash}};
     write_file(json_path, j.dump(2) + "\n");
   }
-  if (!csv_path.empty()) write_file(csv_path, steps_csv(samples.step_ms, samples.stage_ms, samples.threads));
+  if (!csv_path.empty()) {
+    std::vector<CsvColumn> contact_columns;
+    if (run.contacts) {
+      contact_columns = {{"contact_load_ms", &contact_load_ms},
+                         {"collision_ms", &contact_samples.collision_ms}};
+    }
+    write_file(csv_path, steps_csv(samples.step_ms, samples.stage_ms, samples.threads,
+                                   contact_columns));
+  }
   if (!trace_path.empty()) write_file(trace_path, samples.trace.text());
   return 0;
 }

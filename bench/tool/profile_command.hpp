@@ -15,6 +15,8 @@ struct ProfileOptions {
   bool threads_fixed = false;
   bool no_warm_start = false, no_sleep = false, general = false, show_plan = false;
   std::string json_path, csv_path, trace_path, save_path, record_path;
+  std::string recording_overhead_path;  // --recording-overhead (tool/recording_overhead.hpp)
+  double bandwidth_gbps = 0.0;  // a triad bandwidth for the memory section's fractions (0: none)
   // The parsed command: which solver options were given (a scene file's settings hold
   // otherwise).
   const CLI::App* command = nullptr;

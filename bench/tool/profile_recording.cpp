@@ -3,10 +3,12 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "softstep/recording.hpp"
 #include "tool/arguments.hpp"
+#include "tool/contact_report.hpp"
 #include "tool/plan_report.hpp"
 #include "tool/report_files.hpp"
 
@@ -19,7 +21,8 @@ namespace {
 // a result, so they apply from the first record.)
 void refuse_result_changing_options(const ProfileOptions& o) {
   for (const char* option : {"--steps", "--substeps", "--iterations", "--relax",
-                             "--no-warm-start", "--no-sleep", "--save", "--record"}) {
+                             "--no-warm-start", "--no-sleep", "--save", "--record",
+                             "--recording-overhead"}) {
     if (o.command != nullptr && o.command->count(option) > 0) {
       throw UsageError(std::string(option) + " cannot be used with a recording (" +
                        o.scene.scene +
@@ -44,11 +47,13 @@ int profile_recording(const ProfileOptions& o) {
   double clock_us = 0.0;  // the steps laid end to end on the trace's clock
   // The world as it ends, for the figures that need one.
   StepPlan plan;
+  WorldSettings settings;
   SolverLayout layout{};
   std::size_t bodies = 0, joints = 0;
   int threads = 1;
-  // Of the steps given contacts: manifolds, points and softstep's share of taking them.
-  std::vector<double> manifolds, points, contact_load_ms;
+  // Of the steps with contacts: manifolds, points and softstep's share of taking them (the
+  // contacts themselves are not seen here: no rows figure).
+  ContactSamples contacts;
   ReplayHooks hooks;
   // Kept through the recording's own set_settings calls.
   hooks.adjust_settings = [&](WorldSettings& s) {
@@ -63,15 +68,12 @@ int profile_recording(const ProfileOptions& o) {
     samples.add(p, p.step_ms, clock_us);
     clock_us += p.step_ms * 1e3;
     plan = world.step_plan();
+    settings = world.settings();
     layout = world.solver_layout();
     bodies = world.body_count();
     joints = world.joint_count();
     threads = p.threads;
-    if (plan.contact_manifolds > 0) {
-      manifolds.push_back(double(plan.contact_manifolds));
-      points.push_back(double(plan.contact_points));
-      contact_load_ms.push_back(p.contact_load_ms);
-    }
+    contacts.add_step(world, std::numeric_limits<double>::quiet_NaN());
   };
   ReplayReport report;
   try {
@@ -97,20 +99,9 @@ int profile_recording(const ProfileOptions& o) {
     std::printf("\n");
     print_plan(plan);
   }
-  if (report.contact_steps > 0) {
-    // The contacts run inside the solve, relax and restitution stages; taking them (matching
-    // with the last step's, colouring, packing) is the load below, part of the step's time.
-    std::printf("contacts         %ld of the steps: median %.0f manifolds, %.0f points; last step "
-                "%zu colours, %zu in overflow\n",
-                report.contact_steps, median(manifolds), median(points), plan.contact_colors,
-                plan.contact_overflow);
-  }
+  print_contacts_line(contacts, plan, settings);
   print_stage_table(stage_median, ms);
-  if (report.contact_steps > 0)
-    std::printf("  %-22s %8.3f  %5.1f %%  (matching, colouring, packing; median of the contact "
-                "steps)\n",
-                "contact load", median(contact_load_ms),
-                ms > 0 ? 100.0 * median(contact_load_ms) / ms : 0.0);
+  print_contact_stage_lines(contacts, ms);
   std::printf("  %-22s %8.3f  (median of %ld steps; the slowest %.3f)\n\n", "step", ms,
               report.steps, *std::max_element(samples.step_ms.begin(), samples.step_ms.end()));
   std::printf("barrier wait     %.1f %% of thread time\n", 100.0 * median(samples.wait_share));
@@ -121,7 +112,7 @@ int profile_recording(const ProfileOptions& o) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx",
                   static_cast<unsigned long long>(report.state_hash));
-    const nlohmann::json j = {{"recording", o.scene.scene},
+    nlohmann::json j = {{"recording", o.scene.scene},
                               {"steps", report.steps},
                               {"calls", report.calls},
                               {"bodies", bodies},
@@ -132,14 +123,10 @@ int profile_recording(const ProfileOptions& o) {
                               {"stage_ms", stage_json(stage_median)},
                               {"barrier_wait_share", median(samples.wait_share)},
                               {"serial_share", median(samples.serial_share)},
-                              {"contacts",
-                               {{"steps", report.contact_steps},
-                                {"manifolds", report.contact_manifolds},
-                                {"median_manifolds", median(manifolds)},
-                                {"median_points", median(points)},
-                                {"median_load_ms", median(contact_load_ms)}}},
+                              {"contacts", contacts_json(contacts, plan, settings)},
                               {"plan", plan_json(plan)},
                               {"state_hash", hash}};
+    j["contacts"]["manifolds"] = report.contact_manifolds;  // given, over every step
     write_file(o.json_path, j.dump(2) + "\n");
   }
   if (!o.csv_path.empty()) write_file(o.csv_path, steps_csv(samples.step_ms, samples.stage_ms, samples.threads));

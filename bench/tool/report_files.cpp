@@ -5,12 +5,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "tool/arguments.hpp"
 
 namespace softstep::tool {
+
+namespace {
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();  // "null" in the CSV
+}  // namespace
 
 std::string format_number(double value) {
   if (!std::isfinite(value)) return "null";
@@ -22,14 +27,18 @@ std::string format_number(double value) {
 void Trace::add_step(double step_start_us, const StepProfile& profile) {
   for (std::size_t t = 0; t < profile.thread_events.size(); ++t) {
     for (const StageEvent& e : profile.thread_events[t])
-      events_.push_back({e.stage, t, step_start_us + e.start_us, e.end_us - e.start_us});
+      events_.push_back({stage_name(e.stage), t, step_start_us + e.start_us, e.end_us - e.start_us});
   }
+}
+
+void Trace::add_slice(const char* name, std::size_t thread, double start_us, double duration_us) {
+  events_.push_back({name, thread, start_us, duration_us});
 }
 
 std::string Trace::text() const {
   nlohmann::json events = nlohmann::json::array();
   for (const Event& e : events_) {
-    events.push_back({{"name", stage_name(e.stage)},
+    events.push_back({{"name", e.name},
                       {"cat", "step"},
                       {"ph", "X"},
                       {"ts", e.start_us},
@@ -138,14 +147,17 @@ nlohmann::json stage_json(const StageTimes& medians) {
 }
 
 std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages,
-                      const std::vector<int>& threads) {
+                      const std::vector<int>& threads, const std::vector<CsvColumn>& extra) {
   std::string csv = "step,ms";
   for (int k = 0; k < kStageCount; ++k)
     csv += std::string(",") + stage_name(static_cast<Stage>(k)) + "_ms";
+  for (const CsvColumn& c : extra) csv += "," + c.name;
   csv += ",threads\n";
   for (std::size_t i = 0; i < step_ms.size() && i < stages.size() && i < threads.size(); ++i) {
     csv += std::to_string(i) + "," + format_number(step_ms[i]);
     for (double v : stages[i]) csv += "," + format_number(v);
+    for (const CsvColumn& c : extra)
+      csv += "," + format_number(i < c.values->size() ? (*c.values)[i] : kNoValue);
     csv += "," + std::to_string(threads[i]) + "\n";
   }
   return csv;

@@ -20,9 +20,14 @@ using StageTimes = std::array<double, kStageCount>;
 StageTimes stage_medians(const std::vector<StageTimes>& steps);
 void print_stage_table(const StageTimes& medians, double step_ms);
 nlohmann::json stage_json(const StageTimes& medians);
-// `threads`: each step's thread count (the last column).
+// A column of the --csv text beside the stages: one value per step.
+struct CsvColumn {
+  std::string name;
+  const std::vector<double>* values;
+};
+// `threads`: each step's thread count (the last column); `extra` columns before it.
 std::string steps_csv(const std::vector<double>& step_ms, const std::vector<StageTimes>& stages,
-                      const std::vector<int>& threads);
+                      const std::vector<int>& threads, const std::vector<CsvColumn>& extra = {});
 
 // A number with 10 significant digits for CSV, "null" when it is not finite.
 std::string format_number(double value);
@@ -31,11 +36,13 @@ std::string format_number(double value);
 class Trace {
  public:
   void add_step(double step_start_us, const StepProfile& profile);
+  // A slice of work outside the step's stages (the collision detection, the contact load).
+  void add_slice(const char* name, std::size_t thread, double start_us, double duration_us);
   std::string text() const;
 
  private:
   struct Event {
-    Stage stage;
+    const char* name;  // a stage's name or a slice's: static strings
     std::size_t thread;
     double start_us, duration_us;
   };

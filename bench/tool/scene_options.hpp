@@ -28,7 +28,7 @@ namespace softstep::tool {
 extern const char* const kSceneHelp;
 
 struct SceneChoice {
-  std::string scene = "chain";  // chain, grid, bridge, hinge-chain, prismatic-stack, ragdoll, or a scene file
+  std::string scene = "chain";  // chain, grid, bridge, a joint, talk or collision scene, or a file
   scenes::ChainOptions chain;
   scenes::GridOptions grid;
   scenes::BridgeOptions bridge;
@@ -37,7 +37,9 @@ struct SceneChoice {
   scenes::RagdollOptions ragdoll;
   scenes::VehicleOptions vehicle;                 // tool/talk_scenes.cpp
   scenes::SuspensionBridgeOptions suspension;
-  int count = 1;  // --count: ragdolls, cars or bridges (talk_scenes.cpp, one option for the three)
+  int count = 1;  // --count: ragdolls, cars, bridges or pile bodies (talk_scenes.cpp, one option)
+  int pyramid_base = 100;  // pyramid --base (tool/collision_scenes.cpp)
+  int pile_count = 1000;   // pile: bodies dropped (--count)
   std::string spring_text;  // "rigid" or "spring F Hz, zeta Z"
   // Parsed straight into; turned into the scenes' springs and masses once parsing is complete.
   double hertz = 0.0, zeta = 0.7, end_mass = 1.0;
@@ -88,7 +90,8 @@ struct SceneRun {
   std::function<std::string()> reading;
   std::function<SceneReadings()> readings;  // the same for the sweep's CSV
   // The scene's contacts for the world's poses now, from its own narrow phase (vehicle,
-  // suspension-bridge), valid until the next call; empty for scenes without contacts.
+  // suspension-bridge) or Bullet's (pyramid, pile), valid until the next call; empty for
+  // scenes without contacts.
   std::function<std::span<const ContactManifold>()> contacts;
 };
 

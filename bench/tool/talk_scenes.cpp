@@ -18,7 +18,7 @@ bool is_talk_scene(const std::string& scene) {
 void add_talk_scene_options(CLI::App& cmd, SceneChoice& c) {
   cmd.add_option("--count", c.count,
                  "ragdoll: ragdolls of 16 bodies (default 1); vehicle: cars (default 100); "
-                 "suspension-bridge: bridges (default 10)")
+                 "suspension-bridge: bridges (default 10); pile: bodies dropped (default 1000)")
       ->check(whole_in(1, 10000000));
   cmd.add_option("--speed", c.vehicle.speed,
                  "vehicle: the cars' speed, m/s, their wheel motors' target (default 10)")
@@ -26,15 +26,17 @@ void add_talk_scene_options(CLI::App& cmd, SceneChoice& c) {
 }
 
 void finish_talk_scene_options(const CLI::App& cmd, SceneChoice& c) {
-  if (cmd.count("--count") > 0 && !is_talk_scene(c.scene) && c.scene != "ragdoll")
+  if (cmd.count("--count") > 0 && !is_talk_scene(c.scene) && c.scene != "ragdoll" &&
+      c.scene != "pile")
     throw CLI::ValidationError(
-        "--count", "a ragdoll, vehicle or suspension-bridge option, not for scene " + c.scene);
+        "--count", "a ragdoll, vehicle, suspension-bridge or pile option, not for scene " + c.scene);
   if (cmd.count("--speed") > 0 && c.scene != "vehicle")
     throw CLI::ValidationError("--speed", "a vehicle option, not for scene " + c.scene);
   const bool given = cmd.count("--count") > 0;
   c.ragdoll.count = given ? c.count : 1;
   c.vehicle.cars = given ? c.count : 100;
   c.suspension.bridges = given ? c.count : 10;
+  c.pile_count = given ? c.count : 1000;
 }
 
 namespace {

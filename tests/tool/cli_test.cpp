@@ -340,8 +340,8 @@ TEST(ToolCli, SweepTakesARecording) {
   EXPECT_NE(cut.err.find(dir + "/cut.rec: truncated"), std::string::npos) << cut.err;
 }
 
-// A recording with contacts (the fuzzer's seed: softstep_contacts pyramid --base 2 --steps 3
-// --record): replay counts its contacts, profile shows the contacts line and the contact load.
+// A recording with contacts (the fuzzer's seed: the pyramid of base 2 over 3 steps, as
+// softstep profile pyramid --base 2 --steps 3 --record FILE writes it): replay counts its contacts, profile shows the contacts line and the contact load.
 TEST(ToolCli, ContactRecordingsReplayAndProfileWithTheirContacts) {
   const std::string rec =
       std::string(SOFTSTEP_SOURCE_DIR) + "/tests/fuzz/recording_corpus/seed_v3_contacts";

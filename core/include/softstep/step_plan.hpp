@@ -53,6 +53,10 @@ struct PlanKernel {
   std::uint32_t joints;
   std::string parts;      // the parts its joints run: "point + hinge lock + limit + motor"
   bool compiled_variant;  // a variant compiled for exactly these parts (else a general kernel)
+  // The bytes of its lane groups (padding lanes included) and, of those, the accumulated
+  // impulses its passes write: what the memory-traffic model (step_traffic.hpp) counts.
+  std::uint64_t lane_bytes = 0;
+  std::uint64_t impulse_bytes = 0;
 };
 
 struct StepPlan {

@@ -387,6 +387,10 @@ class LaneSolverImpl final : public LaneSolver {
             it = uses_.insert(it, key);
           }
           it->batches += r.end - r.begin;
+          const std::uint64_t groups = r.end - r.begin;
+          it->plan.lane_bytes += groups * sizeof(batch.groups[0]);
+          it->plan.impulse_bytes +=
+              groups * std::uint64_t(width) * Kind::kImpulses * sizeof(float);
           for (std::uint32_t g = r.begin; g < r.end; ++g) {
             for (int lane = 0; lane < width; ++lane) {
               it->joints += batch.groups[g].id[lane] != kPadding;

@@ -1,0 +1,106 @@
+#include "tool/contact_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "tool/report_files.hpp"
+
+namespace softstep::tool {
+
+double contact_rows(const World& world, std::span<const ContactManifold> contacts) {
+  const auto moving = [&](BodyId id) {
+    return world.body(id).type == BodyType::Dynamic && world.is_awake(id);
+  };
+  double rows = 0.0;
+  for (const ContactManifold& m : contacts) {
+    if (!moving(m.body_a) && !moving(m.body_b)) continue;
+    rows += m.point_count * (m.friction > 0.0 ? 3.0 : 1.0) + (m.rolling_resistance > 0.0 ? 3.0 : 0.0);
+  }
+  return rows;
+}
+
+void ContactSamples::add_step(const World& world, double step_rows) {
+  const StepPlan& plan = world.step_plan();
+  if (plan.contact_manifolds == 0) return;
+  ++steps;
+  manifolds.push_back(double(plan.contact_manifolds));
+  points.push_back(double(plan.contact_points));
+  if (!std::isnan(step_rows)) rows.push_back(step_rows);
+  load_ms.push_back(world.last_step_profile().contact_load_ms);
+  colors = plan.contact_colors;
+  overflow = plan.contact_overflow;
+}
+
+double ContactSamples::median_rows() const { return median(rows); }
+
+std::vector<PlanStage> contact_stages(const StepPlan& plan, const WorldSettings& settings) {
+  if (plan.contact_manifolds == 0) return {};
+  std::vector<PlanStage> out;
+  for (PlanStage st : plan.stages) {
+    const bool runs_contacts =
+        st == PlanStage::PrepareContacts || st == PlanStage::Solve ||
+        (st == PlanStage::WarmStart && settings.warm_start) ||
+        (st == PlanStage::Relax && settings.relax_iterations > 0) ||
+        (st == PlanStage::Restitution && plan.contact_restitution);
+    if (runs_contacts) out.push_back(st);
+  }
+  return out;
+}
+
+void print_contacts_line(const ContactSamples& s, const StepPlan& plan,
+                         const WorldSettings& settings) {
+  if (s.steps == 0) return;
+  std::string rows;
+  if (!s.rows.empty()) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  ", %.0f rows per pass (normal + 2 friction per point, + 3 rolling per manifold "
+                  "that asks)",
+                  s.median_rows());
+    rows = text;
+  }
+  std::printf("contacts         %ld of the steps: median %.0f manifolds, %.0f points%s; last "
+              "step %zu colours, %zu manifolds in overflow\n",
+              s.steps, median(s.manifolds), median(s.points), rows.c_str(), s.colors, s.overflow);
+  std::string stages;
+  for (PlanStage st : contact_stages(plan, settings))
+    stages += (stages.empty() ? "" : " ") + std::string(plan_stage_name(st));
+  if (!stages.empty())
+    std::printf("contact stages   %s (in the stage table with the joints' work of the same stage)\n",
+                stages.c_str());
+}
+
+void print_contact_stage_lines(const ContactSamples& s, double step_ms) {
+  // The contacts run inside the prepare, warm start, solve, relax and restitution stages;
+  // taking them is the load, before the threads start.
+  if (s.steps > 0) {
+    const double load = median(s.load_ms);
+    std::printf("  %-22s %8.3f  %5.1f %%  (softstep: matching, colouring, packing; serial, "
+                "before the stages)\n",
+                "contact load", load, step_ms > 0 ? 100.0 * load / step_ms : 0.0);
+  }
+  if (!s.collision_ms.empty()) {
+    std::printf("  %-22s %8.3f  (the scene's narrow phase before each step, the user's part: "
+                "not in the step)\n",
+                "collision (user's)", median(s.collision_ms));
+  }
+}
+
+nlohmann::json contacts_json(const ContactSamples& s, const StepPlan& plan,
+                             const WorldSettings& settings) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  nlohmann::json stages = nlohmann::json::array();
+  for (PlanStage st : contact_stages(plan, settings)) stages.push_back(plan_stage_name(st));
+  return {{"steps", s.steps},
+          {"stages", stages},
+          {"median_manifolds", median(s.manifolds)},
+          {"median_points", median(s.points)},
+          {"median_rows", s.rows.empty() ? kNaN : s.median_rows()},
+          {"colors", s.colors},
+          {"overflow", s.overflow},
+          {"median_load_ms", median(s.load_ms)},
+          {"median_collision_ms", s.collision_ms.empty() ? kNaN : median(s.collision_ms)}};
+}
+
+}  // namespace softstep::tool
