@@ -319,7 +319,7 @@ class ContactSolverImpl final : public ContactSolver {
       begin = end;
     }
     // Sized here, written by the team at the manifolds' positions.
-    matches_.resize(manifolds.size());
+    matches_.resize(entries_.size());
     step.readings->resize(manifolds.size());
     step.next->size_for_step(manifolds.size());
     layout_.load_ms =
@@ -418,9 +418,9 @@ class ContactSolverImpl final : public ContactSolver {
           if (e + kFetchAhead < r.end_entry) fetch_for_packing(entries_[e + kFetchAhead].manifold);
           const std::uint32_t index = entries_[e].manifold;
           const ContactManifold& m = step_.manifolds[index];
-          matches_[index] = find_match(m, index, *step_.previous);
+          matches_[e] = find_match(m, index, *step_.previous);
           fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
-                       step_.warm_start ? matches_[index] : Match{});
+                       step_.warm_start ? matches_[e] : Match{});
         }
       }
     }
@@ -439,8 +439,8 @@ class ContactSolverImpl final : public ContactSolver {
         for (int lane = 0; lane < V; ++lane) {
           const std::uint32_t index = g.id[lane];
           if (index == kPadding) continue;
-          read_lane<V>(g, lane, step_.manifolds[index], matches_[index], start_reading(index),
-                       next_entry(index));
+          read_lane<V>(g, lane, step_.manifolds[index], matches_[first + lane],
+                       start_reading(index), next_entry(index));
         }
       }
     }
@@ -511,7 +511,9 @@ class ContactSolverImpl final : public ContactSolver {
   std::vector<Entry> entries_;   // sorted by order_key
   std::array<std::uint32_t, kOrderKeys> counts_{};
   std::vector<std::uint32_t> left_out_;  // manifolds not in lanes, in input order
-  std::vector<Match> matches_;           // per manifold: its twin in the last step's cache
+  // Per entry (in the solver's order, so that each thread writes a range of its own): the
+  // manifold's twin in the last step's cache.
+  std::vector<Match> matches_;
   std::vector<std::uint32_t> body_colors_;  // per body slot, scratch of load (all zero between)
   std::uint64_t used_colors_ = 0;
   // The first layout_.colors are this step's; the rest keep their memory for later steps.
