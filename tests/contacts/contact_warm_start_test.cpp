@@ -16,12 +16,6 @@ namespace {
 const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);  // 1 m cubes
 constexpr double kDt = 1.0 / 60.0;
 
-WorldSettings without_sleep() {
-  WorldSettings s;
-  s.sleeping = false;
-  return s;
-}
-
 // The same contact seen from the other body: A and B swap, the normal turns, anchors swap.
 ContactManifold swapped(const ContactManifold& m) {
   ContactManifold s = m;
@@ -48,7 +42,7 @@ Eigen::Vector3d total_friction(const ContactReading& r) {
 // pushing the box down the slope with twice its friction, and the box would creep.
 TEST(ContactWarmStart, SwappedBodyPairIsMatchedWithItsImpulsesTurned) {
   const double angle = 25.0 * std::numbers::pi / 180.0;
-  WorldSettings s = without_sleep();
+  WorldSettings s = settings_without_sleep();
   s.gravity = 9.81 * Eigen::Vector3d(std::sin(angle), -std::cos(angle), 0.0);
   World world(s);
   const BodyId ground = add_ground(world);
@@ -77,7 +71,7 @@ TEST(ContactWarmStart, SwappedBodyPairIsMatchedWithItsImpulsesTurned) {
 
 // A column of boxes on the ground, its manifolds made from the poses.
 struct Column {
-  World world{without_sleep()};
+  World world{settings_without_sleep()};
   BodyId ground;
   std::vector<BodyId> boxes;
   std::vector<ContactManifold> contacts() const {
