@@ -406,8 +406,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
         if (share.thread == 0) w.capture_before_solve();
         solver::team_barrier(share);  // the warm start writes the velocities just copied
       }
-      if (planned(PlanStage::WarmStart) || planned(PlanStage::ClearImpulses) ||
-          (has_contacts && s.warm_start)) {
+      if (planned(PlanStage::WarmStart) || planned(PlanStage::ClearImpulses) || has_contacts) {
         stage(Stage::WarmStart, [&] {
           if (planned(PlanStage::WarmStart)) {
             solver.warm_start(arrays, ctx, share);
@@ -415,8 +414,14 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
             solver.clear_impulses(share);
             solver::team_barrier(share);
           }
+          // As the joints: without warm starting each sub-step starts from zero impulse (the
+          // last sub-step's, kept but not applied again, would be clamped and read as if it
+          // were this sub-step's).
           if (has_contacts && s.warm_start) {
             contact_solver.warm_start(arrays, ctx, contact_ctx, share);
+          } else if (has_contacts) {
+            contact_solver.clear_impulses(share);
+            solver::team_barrier(share);
           }
         });
       }

@@ -347,6 +347,10 @@ class ContactSolverImpl final : public ContactSolver {
                   const simd::ContactContext& cc, const solver::Share& share) override {
     run_colors(share, ContactPass::warm_start, arrays, ctx, cc);
   }
+  void clear_impulses(const solver::Share& share) override {
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) clear_share<W>(colors_[c], share);
+    if (share.thread == 0) clear_share<1>(overflow_, solver::Share{});
+  }
   void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
              const simd::ContactContext& cc, const solver::Share& share) override {
     run_colors(share, ContactPass::solve, arrays, ctx, cc);
@@ -422,6 +426,22 @@ class ContactSolverImpl final : public ContactSolver {
           fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
                        step_.warm_start ? matches_[e] : Match{});
         }
+      }
+    }
+  }
+
+  // The same slices as run_share's, so each thread clears the groups it then solves.
+  template <int V>
+  static void clear_share(ContactBatch<V>& batch, const solver::Share& share) {
+    for (const ContactRun& r : batch.runs) {
+      const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
+      for (std::size_t k = slice.begin; k < slice.end; ++k) {
+        simd::ContactLanes<V>& g = batch.groups[r.begin + k];
+        for (auto& p : g.point) {
+          std::fill(std::begin(p.normal_impulse), std::end(p.normal_impulse), 0.0f);
+          for (auto& t : p.tangent_impulse) std::fill(std::begin(t), std::end(t), 0.0f);
+        }
+        for (auto& axis : g.rolling_impulse) std::fill(std::begin(axis), std::end(axis), 0.0f);
       }
     }
   }

@@ -59,6 +59,9 @@ class ContactSolver {
                        const solver::Share&) = 0;
   virtual void warm_start(const simd::BodyArrays&, const simd::SubstepContext&,
                           const simd::ContactContext&, const solver::Share&) = 0;
+  // With warm starting off, before each sub-step's solve: every lane's accumulated impulses
+  // to zero (each thread the groups it solves; the overflow on thread 0).
+  virtual void clear_impulses(const solver::Share&) = 0;
   virtual void solve(const simd::BodyArrays&, const simd::SubstepContext&,
                      const simd::ContactContext&, const solver::Share&) = 0;
   virtual void relax(const simd::BodyArrays&, const simd::SubstepContext&,
