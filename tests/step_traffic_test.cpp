@@ -2,6 +2,7 @@
 // else, grows with the content as the data does, and counts each pass it runs.
 #include <gtest/gtest.h>
 
+#include "contacts/analytic_contacts.hpp"
 #include "scenes/chain_scene.hpp"
 #include "softstep/step_traffic.hpp"
 
@@ -85,6 +86,26 @@ TEST(StepTraffic, AJointPassReadsAtLeastTheJointsLanesAndBodyRecords) {
   const double per_joint = 3.0 * t.bytes[solve] / t.units[solve];  // 3 rows per ball joint
   EXPECT_GE(per_joint, 11 * 4 + 64);
   EXPECT_LE(per_joint, 4096.0) << "a joint's whole lane group is not this large";
+}
+
+TEST(StepTraffic, ContactsAloneMoveNoJointPassBytesAndNothingIsNaN) {
+  // Contact lanes are not modelled: a box on the ground counts its body stages only, and
+  // every stage that counts bytes has units to count them per.
+  World world;
+  const BodyId ground = test::add_ground(world);
+  const Eigen::Vector3d half(0.5, 0.5, 0.5);
+  const BodyId box = test::add_box(world, {0.0, 0.5, 0.0}, 10.0, half);
+  const ContactManifold m = test::box_on_ground(world, ground, box, half, 0.0, 0.5);
+  world.step(1.0 / 60.0, {&m, 1});
+  const StepTraffic t = step_traffic(world);
+  for (Stage st : {Stage::WarmStart, Stage::Solve, Stage::Relax}) EXPECT_EQ(bytes(t, st), 0.0);
+  EXPECT_GT(bytes(t, Stage::Prepare), 0.0);
+  for (int st = 0; st < kStageCount; ++st) {
+    const auto i = static_cast<std::size_t>(st);
+    if (t.bytes[i] > 0.0) {
+      EXPECT_GT(t.units[i], 0.0) << stage_name(static_cast<Stage>(st));
+    }
+  }
 }
 
 }  // namespace

@@ -40,7 +40,9 @@ StepTraffic step_traffic(const World& world) {
   const double substeps = s.substeps;
   const double rows = double(plan.rows_per_pass);
   // A joint pass reads its lanes and, of every body it touches, the velocity (written back),
-  // the delta since the step start and the mass record.
+  // the delta since the step start and the mass record. Contact lanes are not modelled: with
+  // no joint in the lanes the joint passes count nothing.
+  const bool joint_passes = rows > 0.0;
   const double joint_pass_bodies = bodies * (2 * kRecord + kRecord + kRecord);
   StepTraffic t;
   const auto set = [&](Stage stage, double bytes, double units, bool per_row) {
@@ -59,16 +61,16 @@ StepTraffic step_traffic(const World& world) {
   }
   // Velocity in and out, force record in; per sub-step.
   set(Stage::IntegrateVelocities, substeps * bodies * 3 * kRecord, substeps * bodies, false);
-  if (runs(PlanStage::WarmStart)) {
+  if (runs(PlanStage::WarmStart) && joint_passes) {
     set(Stage::WarmStart, substeps * (lanes + joint_pass_bodies), substeps * rows, true);
   }
-  if (runs(PlanStage::Solve)) {
+  if (runs(PlanStage::Solve) && joint_passes) {
     const double passes = substeps * s.solve_iterations;
     set(Stage::Solve, passes * (lanes + impulses + joint_pass_bodies), passes * rows, true);
   }
   // Velocity in, delta in and out; per sub-step.
   set(Stage::IntegratePositions, substeps * bodies * 3 * kRecord, substeps * bodies, false);
-  if (runs(PlanStage::Relax) && s.relax_iterations > 0) {
+  if (runs(PlanStage::Relax) && s.relax_iterations > 0 && joint_passes) {
     const double passes = substeps * s.relax_iterations;
     set(Stage::Relax, passes * (lanes + impulses + joint_pass_bodies), passes * rows, true);
   }
