@@ -9,13 +9,13 @@
 namespace softstep {
 
 enum class Stage : std::uint8_t {
-  Prepare,              // body records, anchors, softness (once per step)
+  Prepare,              // body records, anchors, softness; the contacts' lanes (once per step)
   IntegrateVelocities,  // gravity and damping (per sub-step)
-  WarmStart,            // apply the previous sub-step's impulses (per sub-step)
+  WarmStart,            // apply the previous sub-step's impulses, or clear them (per sub-step)
   Solve,                // soft, biased pass (per sub-step)
   IntegratePositions,   // (per sub-step)
   Relax,                // rigid, unbiased passes (per sub-step)
-  Store,                // poses and velocities back to the world (once per step)
+  Store,                // poses, velocities, contact readings back to the world (once per step)
   Restitution,          // the contacts' bounce pass after the sub-steps (only when asked)
 };
 // Restitution is last: the count follows the enum.
