@@ -73,11 +73,13 @@ void print_contacts_line(const ContactSamples& s, const StepPlan& plan,
 
 void print_contact_stage_lines(const ContactSamples& s, double step_ms) {
   // The contacts run inside the prepare, warm start, solve, relax and restitution stages;
-  // taking them is the load, before the threads start.
+  // their lanes are filled (matched with the last step's cache) in prepare by every thread,
+  // and read back into the readings and the next cache in store. The load is what stays
+  // serial before the threads start: the colouring and the order.
   if (s.steps > 0) {
     const double load = median(s.load_ms);
-    std::printf("  %-22s %8.3f  %5.1f %%  (softstep: matching, colouring, packing; serial, "
-                "before the stages)\n",
+    std::printf("  %-22s %8.3f  %5.1f %%  (softstep: colouring and ordering; serial, before the "
+                "stages; matching and packing are in prepare, reading back in store)\n",
                 "contact load", load, step_ms > 0 ? 100.0 * load / step_ms : 0.0);
   }
   if (!s.collision_ms.empty()) {

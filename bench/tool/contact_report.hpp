@@ -1,6 +1,6 @@
 // What `softstep profile` reports of the contacts a run's steps were given: how many
 // (manifolds, points, and the constraint rows they bring to a pass), how they coloured, what
-// taking them cost softstep (the contact load: matching, colouring, packing) and, when the
+// taking them cost softstep (the contact load: colouring and ordering, serial) and, when the
 // scene finds them itself, what finding them cost (the user's collision detection, outside
 // the step). One place for the built-in scenes and the recordings.
 #pragma once

@@ -115,7 +115,7 @@ void StepSamples::add(const StepProfile& p, double ms, double start_us) {
 void print_serial_share(const StepSamples& samples) {
   std::printf(
       "serial share     %.2f %% of the step() call on one thread whatever the thread count "
-      "(input checks, plan, contact load and store, inertia sums, sleep, recording)\n",
+      "(input checks, plan, contact load, inertia sums, sleep, recording)\n",
       100.0 * median(samples.serial_share));
 }
 

@@ -10,12 +10,12 @@ namespace softstep {
 
 namespace {
 
-// The contacts' warm-start impulses, in the order of their keys (the map's own order depends on
-// its history). Nothing while the cache is empty, so worlds without contacts hash as before.
+// The contacts' warm-start impulses, in the order of their keys (the cache's own order is the
+// last step's input order). Nothing while the cache is empty, so worlds without contacts hash as before.
 void hash_contact_cache(StateHasher& h, const ContactCache& cache) {
   for (const auto* entry : sorted_entries(cache)) {
-    const ContactPairKey& k = entry->first;
-    const CachedManifold& c = entry->second;
+    const ContactPairKey& k = entry->key;
+    const CachedManifold& c = entry->manifold;
     h.value(k.low);
     h.value(k.high);
     h.value(k.key);

@@ -311,7 +311,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
                            validation::format(validation::kMaxSubstep) + "] s");
   }
   const float h = static_cast<float>(substep);
-  validation::contacts("step", w, contacts);
+  validation::contacts("step", w, contacts, w.contact_cache_next);
   wake_touched(w, contacts);
   // A step that colours and packs, or lists the bodies anew, first touches fresh memory: its
   // time says nothing about the thread count.
@@ -319,7 +319,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   w.build_plan();
   const simd::SubstepContext ctx = make_context(s, h);
   ContactSolver& contact_solver = *w.contact_solver;
-  contact_solver.load(contacts, w.bodies, w.contact_cache, s.warm_start);
+  contact_solver.load({contacts, &w.bodies, &w.contact_cache, &w.contact_cache_next,
+                       &w.contact_readings, s.warm_start});
   w.plan_contacts(contact_solver.layout());
   const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
   // Contacts run beside the joints in the same stages: with contacts, the solve stages run
@@ -375,6 +376,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     };
     if (planned(PlanStage::PrepareBodies) || planned(PlanStage::PrepareJoints)) {
       stage(Stage::Prepare, [&] {
+        // The contacts' lanes; the barriers below order them before the contacts' prepare.
+        if (has_contacts) contact_solver.pack(share);
         w.geometric_inertia(h, inertia_substep, share);
         w.prepare_bodies(h, share);
         solver::team_barrier(share);
@@ -403,8 +406,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
         if (share.thread == 0) w.capture_before_solve();
         solver::team_barrier(share);  // the warm start writes the velocities just copied
       }
-      if (planned(PlanStage::WarmStart) || planned(PlanStage::ClearImpulses) ||
-          (has_contacts && s.warm_start)) {
+      if (planned(PlanStage::WarmStart) || planned(PlanStage::ClearImpulses) || has_contacts) {
         stage(Stage::WarmStart, [&] {
           if (planned(PlanStage::WarmStart)) {
             solver.warm_start(arrays, ctx, share);
@@ -412,8 +414,14 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
             solver.clear_impulses(share);
             solver::team_barrier(share);
           }
+          // As the joints: without warm starting each sub-step starts from zero impulse (the
+          // last sub-step's, kept but not applied again, would be clamped and read as if it
+          // were this sub-step's).
           if (has_contacts && s.warm_start) {
             contact_solver.warm_start(arrays, ctx, contact_ctx, share);
+          } else if (has_contacts) {
+            contact_solver.clear_impulses(share);
+            solver::team_barrier(share);
           }
         });
       }
@@ -470,6 +478,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
         if (w.finalize_bodies(share, rest)) some_ready.store(true, std::memory_order_relaxed);
       });
     }
+    // The contacts' impulses into the readings and the next cache: the last contact pass
+    // ended at a barrier, and the bodies' store touches neither.
+    if (!contacts.empty()) stage(Stage::Store, [&] { contact_solver.store(share); });
   };
   const ThreadChoice choice = step_threads(w);
   const int threads = choice.threads;
@@ -507,7 +518,6 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     p.barrier_wait_ms.clear();
     for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
-  contact_solver.store(contacts, w.contact_cache, w.contact_cache_next, w.contact_readings);
   std::swap(w.contact_cache, w.contact_cache_next);
   w.last_substep = h;
   w.joints_without_history = false;

@@ -128,6 +128,7 @@ void World::Impl::plan_contacts(const ContactLayout& c) {
   };
   add(true, PlanStage::PrepareContacts);
   add(settings.warm_start, PlanStage::WarmStart);
+  add(!settings.warm_start, PlanStage::ClearImpulses);
   add(true, PlanStage::Solve);
   add(settings.relax_iterations > 0, PlanStage::Relax);
   add(c.restitution, PlanStage::Restitution);

@@ -207,8 +207,7 @@ void World::destroy_body(BodyId id) {
   // world that destroys bodies by the thousand between steps may want a per-body index.)
   if (!w.contact_cache.empty()) {
     const std::uint64_t word = (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
-    std::erase_if(w.contact_cache,
-                  [word](const auto& entry) { return entry.first.low == word || entry.first.high == word; });
+    w.contact_cache.erase_body(word);
   }
   BodySlot& b = w.bodies[slot];
   b.alive = false;

@@ -12,6 +12,13 @@
 
 namespace softstep::test {
 
+// Settings for tests that watch the solver, not the sleep test.
+inline WorldSettings settings_without_sleep() {
+  WorldSettings s;
+  s.sleeping = false;
+  return s;
+}
+
 inline std::array<Eigen::Vector3d, 8> box_corners(const Eigen::Vector3d& half) {
   std::array<Eigen::Vector3d, 8> c;
   for (int i = 0; i < 8; ++i) {

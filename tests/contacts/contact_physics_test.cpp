@@ -15,12 +15,6 @@ namespace {
 const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);  // 1 m cubes
 constexpr double kDt = 1.0 / 60.0;
 
-WorldSettings settings_without_sleep() {
-  WorldSettings s;
-  s.sleeping = false;  // the tests watch the solver, not the sleep test
-  return s;
-}
-
 // At rest every normal row of the box has v = 0 and a constant impulse P, so its soft update
 //   dP = -mass_scale m_eff (bias_rate s) - impulse_scale P = 0
 // gives P = a bias_rate m_eff |s| = h omega^2 m_eff |s| (a = h omega (2 zeta + h omega)), and

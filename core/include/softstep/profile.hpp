@@ -9,13 +9,13 @@
 namespace softstep {
 
 enum class Stage : std::uint8_t {
-  Prepare,              // body records, anchors, softness (once per step)
+  Prepare,              // body records, anchors, softness; the contacts' lanes (once per step)
   IntegrateVelocities,  // gravity and damping (per sub-step)
-  WarmStart,            // apply the previous sub-step's impulses (per sub-step)
+  WarmStart,            // apply the previous sub-step's impulses, or clear them (per sub-step)
   Solve,                // soft, biased pass (per sub-step)
   IntegratePositions,   // (per sub-step)
   Relax,                // rigid, unbiased passes (per sub-step)
-  Store,                // poses and velocities back to the world (once per step)
+  Store,                // poses, velocities, contact readings back to the world (once per step)
   Restitution,          // the contacts' bounce pass after the sub-steps (only when asked)
 };
 // Restitution is last: the count follows the enum.
@@ -40,12 +40,14 @@ struct StepProfile {
   // trials of the other count included): a count that keeps rising means two threads and
   // one run about equally fast, or another process takes a core from time to time.
   long thread_switches = 0;
-  // Of step_ms: matching the step's contacts with the last step's, colouring and packing them
-  // (softstep's part of taking contacts; the caller's collision detection is outside the step).
+  // Of step_ms: the serial part of taking the step's contacts, before the threads start:
+  // colouring them and ordering them by colour (the caller's collision detection is outside
+  // the step). Matching them with the last step's cache and packing their lanes run on the
+  // step's threads in the prepare stage; reading their impulses back, in the store stage.
   double contact_load_ms = 0.0;
   // Of the whole step() call, the time outside the threads' team, which one thread runs
-  // whatever the thread count: checking the input, the plan, matching and storing contacts,
-  // the geometric-inertia sums, sleep bookkeeping and recording. Its share of the call bounds
+  // whatever the thread count: checking the input (the contacts' too), the plan, the contact
+  // load, the geometric-inertia sums, sleep bookkeeping and recording. Its share of the call bounds
   // what a second thread can win (Amdahl).
   double serial_ms = 0.0;
 };

@@ -7,40 +7,13 @@
 #include <chrono>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "contacts/contact_kernels.hpp"
 #include "solver/team.hpp"
 #include "world_impl.hpp"
 
 namespace softstep {
-
-std::size_t ContactPairHash::operator()(const ContactPairKey& k) const noexcept {
-  // splitmix64-style mixing of the three words; any fixed function keeps lookups
-  // deterministic (the map is never iterated in an order that matters).
-  std::uint64_t h = k.low * 0x9E3779B97F4A7C15ull;
-  h ^= (k.high + 0xBF58476D1CE4E5B9ull + (h << 6) + (h >> 2));
-  h ^= (k.key + 0x94D049BB133111EBull + (h << 6) + (h >> 2));
-  return static_cast<std::size_t>(h ^ (h >> 31));
-}
-
-ContactPairKey contact_pair_key(const ContactManifold& m) {
-  const auto word = [](BodyId id) {
-    return (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
-  };
-  const std::uint64_t a = word(m.body_a), b = word(m.body_b);
-  return {std::min(a, b), std::max(a, b), m.key};
-}
-
-std::vector<const ContactCache::value_type*> sorted_entries(const ContactCache& cache) {
-  std::vector<const ContactCache::value_type*> entries;
-  entries.reserve(cache.size());
-  for (const auto& entry : cache) entries.push_back(&entry);
-  std::sort(entries.begin(), entries.end(), [](const auto* x, const auto* y) {
-    const ContactPairKey &a = x->first, &b = y->first;
-    return std::tie(a.low, a.high, a.key) < std::tie(b.low, b.high, b.key);
-  });
-  return entries;
-}
 
 std::array<Eigen::Vector3d, 2> tangent_directions(const Eigen::Vector3d& normal) {
   // The world axis least aligned with the normal, crossed with it: well conditioned for any
@@ -77,10 +50,10 @@ struct Match {
   double sign = 1.0;
 };
 
-Match find_match(const ContactManifold& m, const ContactCache& cache) {
-  const auto it = cache.find(contact_pair_key(m));
-  if (it == cache.end()) return {};
-  return {&it->second, it->second.body_a == m.body_a.index ? 1.0 : -1.0};
+Match find_match(const ContactManifold& m, std::uint32_t index, const ContactCache& cache) {
+  const ContactCacheEntry* entry = cache.find(contact_pair_key(m), index);
+  if (entry == nullptr) return {};
+  return {&entry->manifold, entry->manifold.body_a == m.body_a.index ? 1.0 : -1.0};
 }
 
 // The cached point with this feature id, or -1.
@@ -90,6 +63,23 @@ int matching_point(const Match& match, std::uint32_t feature_id) {
     if (match.cached->feature_id[k] == feature_id) return k;
   }
   return -1;
+}
+
+// Lanes are filled and read in the solver's order (by colour), so the manifolds, their cache
+// entries and their bodies are met at random places: each is asked from memory this many
+// manifolds ahead, so that the misses overlap instead of stalling one after another.
+constexpr std::size_t kFetchAhead = 8;
+
+template <class T>
+void fetch(const T& object) {
+  const char* p = reinterpret_cast<const char*>(&object);
+  for (std::size_t at = 0; at < sizeof(T); at += 64) __builtin_prefetch(p + at);
+}
+
+template <class T>
+void fetch_for_writing(T& object) {
+  char* p = reinterpret_cast<char*>(&object);
+  for (std::size_t at = 0; at < sizeof(T); at += 64) __builtin_prefetch(p + at, 1);
 }
 
 template <class Group>
@@ -114,10 +104,10 @@ Eigen::Vector3d surface_point(const Eigen::Vector3d& core, double offset,
 }
 
 // One manifold into one lane: the geometry in double (the anchors turned to the world at the
-// step start) and the warm-start impulses from the matching cached points.
+// step start) and the warm-start impulses from the matching cached points (none: match empty).
 template <int W>
 void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const ContactManifold& m,
-               const std::vector<BodySlot>& bodies, const ContactCache& cache, bool warm_start) {
+               const std::vector<BodySlot>& bodies, const Match& match) {
   const BodySlot& a = bodies[m.body_a.index];
   const BodySlot& b = bodies[m.body_b.index];
   g.id[lane] = index;
@@ -137,7 +127,6 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   g.tangent_speed[1][lane] = static_cast<float>(m.tangent_speed.y());
   g.radius_a[lane] = static_cast<float>(m.radius_a);
   g.radius_b[lane] = static_cast<float>(m.radius_b);
-  const Match match = warm_start ? find_match(m, cache) : Match{};
   put3<W>(g.rolling_impulse, lane,
           match.cached ? Eigen::Vector3d(match.sign * match.cached->rolling_impulse)
                        : Eigen::Vector3d::Zero());
@@ -162,16 +151,17 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   }
 }
 
-// A lane's impulses as the reading and the cache entry of its manifold.
+// A lane's impulses as the reading and the cache entry of its manifold (match: its twin in the
+// last step's cache, which tells the reading whether each point is new).
 template <int W>
 void read_lane(const simd::ContactLanes<W>& g, int lane, const ContactManifold& m,
-               const ContactCache& previous, ContactReading& reading, CachedManifold& next) {
+               const Match& match, ContactReading& reading, CachedManifold& next) {
   const auto get3 = [&](const float(&src)[3][W]) {
     return Eigen::Vector3d(src[0][lane], src[1][lane], src[2][lane]);
   };
   const Eigen::Vector3d t1 = get3(g.tangent[0]);
   const Eigen::Vector3d t2 = get3(g.tangent[1]);
-  const Match match = find_match(m, previous);
+  next = CachedManifold{};
   next.body_a = m.body_a.index;
   next.point_count = m.point_count;
   next.rolling_impulse = get3(g.rolling_impulse);
@@ -191,9 +181,8 @@ void read_lane(const simd::ContactLanes<W>& g, int lane, const ContactManifold& 
 }
 
 // A manifold left out of the lanes (both ends static or asleep): it keeps what it had.
-void carry_over(const ContactManifold& m, const ContactCache& previous, ContactReading& reading,
+void carry_over(const ContactManifold& m, const Match& match, ContactReading& reading,
                 CachedManifold& next) {
-  const Match match = find_match(m, previous);
   next = CachedManifold{};
   next.body_a = m.body_a.index;
   next.point_count = m.point_count;
@@ -234,7 +223,8 @@ typename solver::ContactKernels<W>::Pass pass_of(const solver::ContactKernels<W>
 
 struct ContactRun {
   std::uint32_t signature;
-  std::uint32_t begin, end;  // groups
+  std::uint32_t begin, end;              // groups
+  std::uint32_t first_entry, end_entry;  // its manifolds, in the solver's order
 };
 
 // The groups of one colour (or of the overflow set) at width W, cut into runs by signature.
@@ -244,24 +234,47 @@ struct ContactBatch {
   std::vector<ContactRun> runs;
 };
 
+// The solver's order: colour, then signature (a run per kernel variant), then most points
+// first (a group's point loop stops at its fullest lane), as one small number; a counting sort
+// by it is stable, so the overflow keeps input order within.
+constexpr std::uint32_t kPointOrders = kMaxContactPoints;
+constexpr std::uint32_t kOrderKeys = (kContactColors + 1) * simd::kContactSignatures * kPointOrders;
+
+constexpr std::uint32_t order_key(std::uint32_t color, std::uint32_t signature, int points) {
+  return (color * simd::kContactSignatures + signature) * kPointOrders +
+         static_cast<std::uint32_t>(kMaxContactPoints - points);
+}
+constexpr std::uint32_t color_of(std::uint32_t key) {
+  return key / (simd::kContactSignatures * kPointOrders);
+}
+constexpr std::uint32_t signature_of(std::uint32_t key) {
+  return key / kPointOrders % simd::kContactSignatures;
+}
+
 template <int W>
 class ContactSolverImpl final : public ContactSolver {
  public:
   ContactSolverImpl(solver::ContactKernels<W> kernels, solver::ContactKernels<1> scalar)
       : kernels_(kernels), scalar_(scalar) {}
 
-  void load(std::span<const ContactManifold> manifolds, const std::vector<BodySlot>& bodies,
-            const ContactCache& cache, bool warm_start) override {
+  void load(const ContactStep& step) override {
     const auto start = std::chrono::steady_clock::now();
+    step_ = step;
+    const std::span<const ContactManifold> manifolds = step.manifolds;
+    const std::vector<BodySlot>& bodies = *step.bodies;
     layout_ = {};
     used_colors_ = 0;
-    entries_.clear();
+    unsorted_.clear();
+    left_out_.clear();
     if (body_colors_.size() < bodies.size()) body_colors_.resize(bodies.size(), 0u);
     for (std::uint32_t i = 0; i < manifolds.size(); ++i) {
       const ContactManifold& m = manifolds[i];
       const std::uint32_t a = m.body_a.index, b = m.body_b.index;
       const bool moves_a = awake_dynamic(bodies[a]), moves_b = awake_dynamic(bodies[b]);
-      if (!moves_a && !moves_b) continue;
+      if (!moves_a && !moves_b) {
+        left_out_.push_back(i);
+        continue;
+      }
       std::uint32_t signature = 0;
       if (m.friction > 0.0) signature |= simd::kContactFriction;
       if (m.rolling_resistance > 0.0) signature |= simd::kContactRolling;
@@ -278,42 +291,37 @@ class ContactSolverImpl final : public ContactSolver {
         if (moves_b) body_colors_[b] |= 1u << color;
         used_colors_ |= 1ull << color;
       }
-      entries_.push_back({color, signature, kMaxContactPoints - m.point_count, i});
+      unsorted_.push_back({order_key(color, signature, m.point_count), i});
     }
-    for (const Entry& e : entries_) {
+    for (const Entry& e : unsorted_) {
       const ContactManifold& m = manifolds[e.manifold];
       body_colors_[m.body_a.index] = 0;
       body_colors_[m.body_b.index] = 0;
     }
-    // Colour, then signature (a run per kernel variant), then most points first (a group's
-    // point loop stops at its fullest lane). Stable: the overflow keeps input order within.
-    std::stable_sort(entries_.begin(), entries_.end(), [](const Entry& x, const Entry& y) {
-      return std::tie(x.color, x.signature, x.fewer_points) <
-             std::tie(y.color, y.signature, y.fewer_points);
-    });
+    sort_entries();
     layout_.manifolds = static_cast<std::uint32_t>(entries_.size());
     layout_.colors = static_cast<std::uint32_t>(std::popcount(used_colors_));
-    colors_.resize(static_cast<std::size_t>(layout_.colors));
-    for (auto& c : colors_) {
-      c.groups.clear();
-      c.runs.clear();
-    }
+    if (colors_.size() < layout_.colors) colors_.resize(layout_.colors);
     overflow_.groups.clear();
     overflow_.runs.clear();
     std::size_t begin = 0;
     std::uint32_t color_index = 0;
     while (begin < entries_.size()) {
       std::size_t end = begin;
-      const std::uint32_t color = entries_[begin].color;
-      while (end < entries_.size() && entries_[end].color == color) ++end;
+      const std::uint32_t color = color_of(entries_[begin].order);
+      while (end < entries_.size() && color_of(entries_[end].order) == color) ++end;
       if (color == kOverflow) {
         layout_.overflow = static_cast<std::uint32_t>(end - begin);
-        pack<1>(overflow_, begin, end, manifolds, bodies, cache, warm_start);
+        lay_out<1>(overflow_, begin, end);
       } else {
-        pack<W>(colors_[color_index++], begin, end, manifolds, bodies, cache, warm_start);
+        lay_out<W>(colors_[color_index++], begin, end);
       }
       begin = end;
     }
+    // Sized here, written by the team at the manifolds' positions.
+    matches_.resize(entries_.size());
+    step.readings->resize(manifolds.size());
+    step.next->size_for_step(manifolds.size());
     layout_.load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
@@ -321,9 +329,16 @@ class ContactSolverImpl final : public ContactSolver {
 
   const ContactLayout& layout() const override { return layout_; }
 
+  void pack(const solver::Share& share) override {
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) pack_share<W>(colors_[c], share);
+    pack_share<1>(overflow_, share);
+  }
+
   void prepare(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                const solver::Share& share) override {
-    for (auto& c : colors_) run_share<W>(c, kernels_, share, ContactPass::prepare, arrays, ctx, {});
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) {
+      run_share<W>(colors_[c], kernels_, share, ContactPass::prepare, arrays, ctx, {});
+    }
     if (share.thread == 0) {
       run_share<1>(overflow_, scalar_, solver::Share{}, ContactPass::prepare, arrays, ctx, {});
     }
@@ -331,6 +346,10 @@ class ContactSolverImpl final : public ContactSolver {
   void warm_start(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                   const simd::ContactContext& cc, const solver::Share& share) override {
     run_colors(share, ContactPass::warm_start, arrays, ctx, cc);
+  }
+  void clear_impulses(const solver::Share& share) override {
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) clear_share<W>(colors_[c], share);
+    if (share.thread == 0) clear_share<1>(overflow_, solver::Share{});
   }
   void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
              const simd::ContactContext& cc, const solver::Share& share) override {
@@ -345,65 +364,136 @@ class ContactSolverImpl final : public ContactSolver {
     run_colors(share, ContactPass::restitute, arrays, ctx, cc);
   }
 
-  void store(std::span<const ContactManifold> manifolds, const ContactCache& previous,
-             ContactCache& next, std::vector<ContactReading>& readings) const override {
-    next.clear();
-    next.reserve(manifolds.size());
-    readings.assign(manifolds.size(), ContactReading{});
-    in_lanes_.assign(manifolds.size(), false);
-    const auto read = [&](const auto& batch, auto width) {
-      for (const auto& g : batch.groups) {
-        for (int lane = 0; lane < decltype(width)::value; ++lane) {
-          if (g.id[lane] == kPadding) continue;
-          const ContactManifold& m = manifolds[g.id[lane]];
-          ContactReading& r = readings[g.id[lane]];
-          r.body_a = m.body_a;
-          r.body_b = m.body_b;
-          r.point_count = m.point_count;
-          read_lane<decltype(width)::value>(g, lane, m, previous, r, next[contact_pair_key(m)]);
-          in_lanes_[g.id[lane]] = true;
-        }
-      }
-    };
-    for (const auto& c : colors_) read(c, std::integral_constant<int, W>{});
-    read(overflow_, std::integral_constant<int, 1>{});
-    for (std::uint32_t i = 0; i < manifolds.size(); ++i) {
-      if (in_lanes_[i]) continue;
-      const ContactManifold& m = manifolds[i];
-      readings[i].body_a = m.body_a;
-      readings[i].body_b = m.body_b;
-      readings[i].point_count = m.point_count;
-      carry_over(m, previous, readings[i], next[contact_pair_key(m)]);
+  void store(const solver::Share& share) override {
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) store_share<W>(colors_[c], share);
+    store_share<1>(overflow_, share);
+    const solver::Slice mine = solver::slice_of(left_out_.size(), share);
+    for (std::size_t k = mine.begin; k < mine.end; ++k) {
+      const std::uint32_t index = left_out_[k];
+      const ContactManifold& m = step_.manifolds[index];
+      carry_over(m, find_match(m, index, *step_.previous), start_reading(index), next_entry(index));
     }
   }
 
  private:
   struct Entry {
-    std::uint32_t color, signature;
-    int fewer_points;  // kMaxContactPoints - points: sorts the fullest first
+    std::uint32_t order;  // order_key
     std::uint32_t manifold;
   };
 
+  void sort_entries() {
+    counts_.fill(0);
+    for (const Entry& e : unsorted_) ++counts_[e.order];
+    std::uint32_t sum = 0;
+    for (std::uint32_t& c : counts_) sum += std::exchange(c, sum);
+    entries_.resize(unsorted_.size());
+    for (const Entry& e : unsorted_) entries_[counts_[e.order]++] = e;
+  }
+
+  // The runs and group count of entries [begin, end) (one colour, or the overflow).
   template <int V>
-  void pack(ContactBatch<V>& batch, std::size_t begin, std::size_t end,
-            std::span<const ContactManifold> manifolds, const std::vector<BodySlot>& bodies,
-            const ContactCache& cache, bool warm_start) {
+  void lay_out(ContactBatch<V>& batch, std::size_t begin, std::size_t end) {
+    batch.runs.clear();
+    std::uint32_t groups = 0;
     for (std::size_t run_begin = begin; run_begin < end;) {
-      const std::uint32_t signature = entries_[run_begin].signature;
+      const std::uint32_t signature = signature_of(entries_[run_begin].order);
       std::size_t run_end = run_begin;
-      while (run_end < end && entries_[run_end].signature == signature) ++run_end;
-      const auto first = static_cast<std::uint32_t>(batch.groups.size());
-      const std::size_t count = run_end - run_begin;
-      batch.groups.resize(first + (count + V - 1) / V,
-                          empty_group<simd::ContactLanes<V>>());
-      for (std::size_t i = 0; i < count; ++i) {
-        const std::uint32_t index = entries_[run_begin + i].manifold;
-        fill_lane<V>(batch.groups[first + i / V], static_cast<int>(i % V), index,
-                     manifolds[index], bodies, cache, warm_start);
-      }
-      batch.runs.push_back({signature, first, static_cast<std::uint32_t>(batch.groups.size())});
+      while (run_end < end && signature_of(entries_[run_end].order) == signature) ++run_end;
+      const auto count = static_cast<std::uint32_t>(run_end - run_begin);
+      const std::uint32_t first = groups;
+      groups += (count + V - 1) / V;
+      batch.runs.push_back({signature, first, groups, static_cast<std::uint32_t>(run_begin),
+                            static_cast<std::uint32_t>(run_end)});
       run_begin = run_end;
     }
+    batch.groups.resize(groups);
+  }
+
+  template <int V>
+  void pack_share(ContactBatch<V>& batch, const solver::Share& share) {
+    for (const ContactRun& r : batch.runs) {
+      const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
+      for (std::size_t k = slice.begin; k < slice.end; ++k) {
+        simd::ContactLanes<V>& g = batch.groups[r.begin + k];
+        g = empty_group<simd::ContactLanes<V>>();
+        const std::size_t first = r.first_entry + k * V;
+        const std::size_t last = std::min<std::size_t>(first + V, r.end_entry);
+        for (std::size_t e = first; e < last; ++e) {
+          if (e + kFetchAhead < r.end_entry) fetch_for_packing(entries_[e + kFetchAhead].manifold);
+          const std::uint32_t index = entries_[e].manifold;
+          const ContactManifold& m = step_.manifolds[index];
+          matches_[e] = find_match(m, index, *step_.previous);
+          fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
+                       step_.warm_start ? matches_[e] : Match{});
+        }
+      }
+    }
+  }
+
+  // The same slices as run_share's, so each thread clears the groups it then solves.
+  template <int V>
+  static void clear_share(ContactBatch<V>& batch, const solver::Share& share) {
+    for (const ContactRun& r : batch.runs) {
+      const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
+      for (std::size_t k = slice.begin; k < slice.end; ++k) {
+        simd::ContactLanes<V>& g = batch.groups[r.begin + k];
+        for (auto& p : g.point) {
+          std::fill(std::begin(p.normal_impulse), std::end(p.normal_impulse), 0.0f);
+          for (auto& t : p.tangent_impulse) std::fill(std::begin(t), std::end(t), 0.0f);
+        }
+        for (auto& axis : g.rolling_impulse) std::fill(std::begin(axis), std::end(axis), 0.0f);
+      }
+    }
+  }
+
+  template <int V>
+  void store_share(const ContactBatch<V>& batch, const solver::Share& share) {
+    for (const ContactRun& r : batch.runs) {
+      const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
+      for (std::size_t k = slice.begin; k < slice.end; ++k) {
+        const simd::ContactLanes<V>& g = batch.groups[r.begin + k];
+        const std::size_t first = r.first_entry + k * V;
+        for (std::size_t e = first; e < first + V && e + kFetchAhead < r.end_entry; ++e) {
+          fetch_for_storing(entries_[e + kFetchAhead].manifold);
+        }
+        for (int lane = 0; lane < V; ++lane) {
+          const std::uint32_t index = g.id[lane];
+          if (index == kPadding) continue;
+          read_lane<V>(g, lane, step_.manifolds[index], matches_[first + lane],
+                       start_reading(index), next_entry(index));
+        }
+      }
+    }
+  }
+
+  void fetch_for_packing(std::uint32_t index) const {
+    const ContactManifold& m = step_.manifolds[index];
+    fetch(m);
+    if (index < step_.previous->size()) fetch(step_.previous->entries()[index]);
+    fetch((*step_.bodies)[m.body_a.index].orientation);
+    fetch((*step_.bodies)[m.body_b.index].orientation);
+  }
+
+  void fetch_for_storing(std::uint32_t index) const {
+    fetch(step_.manifolds[index]);
+    fetch_for_writing((*step_.readings)[index]);
+    fetch_for_writing(step_.next->step_entry(index));
+  }
+
+  ContactReading& start_reading(std::uint32_t index) {
+    const ContactManifold& m = step_.manifolds[index];
+    ContactReading& r = (*step_.readings)[index];
+    r = ContactReading{};
+    r.body_a = m.body_a;
+    r.body_b = m.body_b;
+    r.point_count = m.point_count;
+    return r;
+  }
+
+  CachedManifold& next_entry(std::uint32_t index) {
+    ContactCacheEntry& e = step_.next->step_entry(index);
+    e.key = contact_pair_key(step_.manifolds[index]);
+    return e.manifold;
   }
 
   template <int V>
@@ -423,8 +513,8 @@ class ContactSolverImpl final : public ContactSolver {
   // As the joints: colour by colour with a barrier after each, then the overflow in order.
   void run_colors(const solver::Share& share, ContactPass pass, const simd::BodyArrays& arrays,
                   const simd::SubstepContext& ctx, const simd::ContactContext& cc) {
-    for (auto& c : colors_) {
-      run_share<W>(c, kernels_, share, pass, arrays, ctx, cc);
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) {
+      run_share<W>(colors_[c], kernels_, share, pass, arrays, ctx, cc);
       solver::team_barrier(share);
     }
     if (!overflow_.groups.empty()) {
@@ -436,12 +526,19 @@ class ContactSolverImpl final : public ContactSolver {
   solver::ContactKernels<W> kernels_;
   solver::ContactKernels<1> scalar_;
   ContactLayout layout_;
-  std::vector<Entry> entries_;
+  ContactStep step_;
+  std::vector<Entry> unsorted_;  // the manifolds in lanes, in input order
+  std::vector<Entry> entries_;   // sorted by order_key
+  std::array<std::uint32_t, kOrderKeys> counts_{};
+  std::vector<std::uint32_t> left_out_;  // manifolds not in lanes, in input order
+  // Per entry (in the solver's order, so that each thread writes a range of its own): the
+  // manifold's twin in the last step's cache.
+  std::vector<Match> matches_;
   std::vector<std::uint32_t> body_colors_;  // per body slot, scratch of load (all zero between)
   std::uint64_t used_colors_ = 0;
+  // The first layout_.colors are this step's; the rest keep their memory for later steps.
   std::vector<ContactBatch<W>> colors_;
   ContactBatch<1> overflow_;
-  mutable std::vector<bool> in_lanes_;  // scratch of store
 };
 
 }  // namespace

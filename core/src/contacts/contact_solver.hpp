@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <memory>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
+#include "contacts/contact_cache.hpp"
 #include "softstep/contacts.hpp"
 #include "softstep/simd/contact_kernel.hpp"
 #include "softstep/world_settings.hpp"
@@ -20,36 +20,15 @@ namespace softstep {
 
 struct BodySlot;
 
-// What a manifold left for the next step's warm start, keyed by its ordered body pair and key.
-struct CachedManifold {
-  std::uint32_t body_a = 0;  // the slot that was A (impulses on B flip sign when A and B swap)
-  int point_count = 0;
-  std::array<std::uint32_t, kMaxContactPoints> feature_id{};
-  std::array<double, kMaxContactPoints> normal_impulse{};
-  // on B, world; zeros spelt out: {} leaves an Eigen vector uninitialized (gcc under ASan
-  // rightly warns that moving such a manifold reads them)
-  std::array<Eigen::Vector3d, kMaxContactPoints> friction_impulse{
-      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-      Eigen::Vector3d::Zero()};
-  static_assert(kMaxContactPoints == 4, "one Zero() per point above");
-  std::array<double, kMaxContactPoints> max_normal_impulse{};
-  Eigen::Vector3d rolling_impulse = Eigen::Vector3d::Zero();  // on B, world
+// The step's contacts and where their results go, handed to load; held until store returns.
+struct ContactStep {
+  std::span<const ContactManifold> manifolds;
+  const std::vector<BodySlot>* bodies = nullptr;
+  const ContactCache* previous = nullptr;  // the last step's warm-start cache
+  ContactCache* next = nullptr;  // indexed by the step's validation (ContactCache::index_step)
+  std::vector<ContactReading>* readings = nullptr;
+  bool warm_start = true;
 };
-
-struct ContactPairKey {
-  std::uint64_t low, high;  // (generation << 32 | slot) of the lower and the higher slot
-  std::uint64_t key;
-  bool operator==(const ContactPairKey&) const = default;
-};
-struct ContactPairHash {
-  std::size_t operator()(const ContactPairKey& k) const noexcept;
-};
-using ContactCache = std::unordered_map<ContactPairKey, CachedManifold, ContactPairHash>;
-
-ContactPairKey contact_pair_key(const ContactManifold& m);
-// The cache's entries in the order of their keys (body pair, then key): the map's own order
-// depends on its history, and the state hash and scene files need one that does not.
-std::vector<const ContactCache::value_type*> sorted_entries(const ContactCache& cache);
 
 // How the step's contacts were laid out (for the plan and the profile).
 struct ContactLayout {
@@ -59,18 +38,20 @@ struct ContactLayout {
   std::uint32_t overflow = 0;  // manifolds solved in order on one thread
   std::uint32_t signatures = 0;  // union of the manifolds' ContactFeature bits
   bool restitution = false;      // some manifold asks for restitution
-  double load_ms = 0.0;          // matching, colouring and packing, this step
+  double load_ms = 0.0;  // the serial part of this step's load (colouring and sorting)
 };
 
 class ContactSolver {
  public:
   virtual ~ContactSolver() = default;
-  // Serial, before the step's threads start: matches the manifolds with the cache (warm
-  // start), colours and packs them. Manifolds whose bodies are all static or asleep are left
-  // out; their cache entries carry over.
-  virtual void load(std::span<const ContactManifold> manifolds,
-                    const std::vector<BodySlot>& bodies, const ContactCache& cache,
-                    bool warm_start) = 0;
+  // Serial, before the step's threads start: colours the manifolds, orders them by colour,
+  // signature and points, and lays out their groups; sizes the readings and the next cache.
+  // Manifolds whose bodies are all static or asleep are left out; their cache entries carry
+  // over. Nothing of the world is read after this but the step's manifolds and bodies.
+  virtual void load(const ContactStep& step) = 0;
+  // Each thread its share of the groups, before prepare (a barrier between): matches each
+  // manifold with the last step's cache (once: store reuses the match) and fills its lane.
+  virtual void pack(const solver::Share&) = 0;
   virtual const ContactLayout& layout() const = 0;
   bool empty() const { return layout().manifolds == 0; }
   // Each thread its share; prepare ends without a barrier, the others with one per colour.
@@ -78,15 +59,18 @@ class ContactSolver {
                        const solver::Share&) = 0;
   virtual void warm_start(const simd::BodyArrays&, const simd::SubstepContext&,
                           const simd::ContactContext&, const solver::Share&) = 0;
+  // With warm starting off, before each sub-step's solve: every lane's accumulated impulses
+  // to zero (each thread the groups it solves; the overflow on thread 0).
+  virtual void clear_impulses(const solver::Share&) = 0;
   virtual void solve(const simd::BodyArrays&, const simd::SubstepContext&,
                      const simd::ContactContext&, const solver::Share&) = 0;
   virtual void relax(const simd::BodyArrays&, const simd::SubstepContext&,
                      const simd::ContactContext&, const solver::Share&) = 0;
   virtual void restitute(const simd::BodyArrays&, const simd::SubstepContext&,
                          const simd::ContactContext&, const solver::Share&) = 0;
-  // Serial, after the step: the readings in input order and the cache for the next step.
-  virtual void store(std::span<const ContactManifold> manifolds, const ContactCache& previous,
-                     ContactCache& next, std::vector<ContactReading>& readings) const = 0;
+  // Each thread its share, after the last contact pass (a barrier between): the readings and
+  // the next cache's entries, both at the manifolds' input positions.
+  virtual void store(const solver::Share&) = 0;
 };
 
 std::unique_ptr<ContactSolver> make_contact_solver(SimdWidth width);

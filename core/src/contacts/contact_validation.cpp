@@ -3,9 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
-#include <unordered_set>
 
-#include "contacts/contact_solver.hpp"
+#include "contacts/contact_cache.hpp"
 #include "validation.hpp"
 
 namespace softstep::validation {
@@ -107,13 +106,14 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
 }  // namespace
 
 void contacts(std::string_view call, const World::Impl& w,
-              std::span<const ContactManifold> manifolds) {
-  std::unordered_set<ContactPairKey, ContactPairHash> seen;
-  seen.reserve(manifolds.size());
+              std::span<const ContactManifold> manifolds, ContactCache& next) {
+  // Keys only read ids, so they are safe to index before the fields are checked; errors are
+  // still reported for the first manifold in input order that breaks any rule.
+  const std::size_t repeat = next.index_step(manifolds, w.contact_cache);
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
     const ContactManifold& m = manifolds[i];
     if (!passes(w, m)) describe_failure(call, w, m, i);
-    if (!seen.insert(contact_pair_key(m)).second) {
+    if (i == repeat) {
       reject(call, "contacts[" + std::to_string(i) + "].key", std::to_string(m.key),
              "another manifold of this step has the same body pair and key");
     }

@@ -5,12 +5,15 @@
 #include <span>
 #include <string_view>
 
+#include "contacts/contact_cache.hpp"
 #include "softstep/contacts.hpp"
 #include "world_impl.hpp"
 
 namespace softstep::validation {
 
+// next: the step's next warm-start cache, whose index of the manifolds' keys this fills
+// (ContactCache::index_step; it finds the repeated keys). Scratch until the step stores it.
 void contacts(std::string_view call, const World::Impl& world,
-              std::span<const ContactManifold> manifolds);
+              std::span<const ContactManifold> manifolds, ContactCache& next);
 
 }  // namespace softstep::validation

@@ -30,8 +30,8 @@ json contact_cache_json(const World& world, const BodyIndex& index) {
   json list = json::array();
   for (const auto* entry : sorted_entries(cache)) {
     // Both bodies are alive: destroy_body takes its entries out of the cache.
-    const ContactPairKey& k = entry->first;
-    const CachedManifold& c = entry->second;
+    const ContactPairKey& k = entry->key;
+    const CachedManifold& c = entry->manifold;
     const BodyId low = body_of_word(k.low), high = body_of_word(k.high);
     const bool low_is_a = low.index == c.body_a;
     json j = {{"a", index(low_is_a ? low : high)}, {"b", index(low_is_a ? high : low)}};
@@ -53,7 +53,6 @@ void read_contact_cache(const Source& source, ObjectReader& solver_state,
                         const std::vector<BodyId>& bodies, World& world) {
   const json& list = solver_state.array(kKey, /*optional=*/true);
   ContactCache cache;
-  cache.reserve(list.size());
   for (std::size_t i = 0; i < list.size(); ++i) {
     const std::string path = solver_state.path_of(kKey) + "/" + std::to_string(i);
     ObjectReader fields(source, list[i], path);
@@ -99,7 +98,7 @@ void read_contact_cache(const Source& source, ObjectReader& solver_state,
     pair.body_a = a;
     pair.body_b = b;
     pair.key = key;
-    if (!cache.emplace(contact_pair_key(pair), c).second)
+    if (!cache.insert(contact_pair_key(pair), c))
       fail(source, path, "a second entry for the same two bodies and key");
   }
   WorldInternals::of(world).contact_cache = std::move(cache);

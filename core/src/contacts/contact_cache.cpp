@@ -1,0 +1,69 @@
+#include "contacts/contact_cache.hpp"
+
+#include <algorithm>
+#include <tuple>
+
+namespace softstep {
+
+ContactPairKey contact_pair_key(const ContactManifold& m) {
+  const auto word = [](BodyId id) {
+    return (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
+  };
+  const std::uint64_t a = word(m.body_a), b = word(m.body_b);
+  return {std::min(a, b), std::max(a, b), m.key};
+}
+
+bool ContactCache::insert(const ContactPairKey& key, const CachedManifold& manifold) {
+  if (entries_.empty()) index_.reset(0);
+  if (index_.insert(key, static_cast<std::uint32_t>(entries_.size())) !=
+      ContactKeyIndex::kAbsent) {
+    return false;
+  }
+  entries_.push_back({key, manifold});
+  return true;
+}
+
+std::size_t ContactCache::index_step(std::span<const ContactManifold> manifolds,
+                                     const ContactCache& previous) {
+  // A scene at rest hands the same manifolds in the same order step after step: their keys
+  // are then the previous step's, which were unique, at the same positions, and so is the index.
+  bool same = manifolds.size() == previous.size();
+  for (std::size_t i = 0; same && i < manifolds.size(); ++i) {
+    same = contact_pair_key(manifolds[i]) == previous.entries_[i].key;
+  }
+  if (same) {
+    index_ = previous.index_;  // the same size: a copy into the memory it has
+    return kNoRepeat;
+  }
+  index_.reset(manifolds.size());
+  for (std::size_t i = 0; i < manifolds.size(); ++i) {
+    if (index_.insert(contact_pair_key(manifolds[i]), static_cast<std::uint32_t>(i)) !=
+        ContactKeyIndex::kAbsent) {
+      return i;
+    }
+  }
+  return kNoRepeat;
+}
+
+void ContactCache::erase_body(std::uint64_t body_word) {
+  std::erase_if(entries_, [body_word](const ContactCacheEntry& e) {
+    return e.key.low == body_word || e.key.high == body_word;
+  });
+  index_.reset(entries_.size());
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    index_.insert(entries_[i].key, static_cast<std::uint32_t>(i));
+  }
+}
+
+std::vector<const ContactCacheEntry*> sorted_entries(const ContactCache& cache) {
+  std::vector<const ContactCacheEntry*> entries;
+  entries.reserve(cache.size());
+  for (const ContactCacheEntry& entry : cache.entries()) entries.push_back(&entry);
+  std::sort(entries.begin(), entries.end(), [](const auto* x, const auto* y) {
+    const ContactPairKey &a = x->key, &b = y->key;
+    return std::tie(a.low, a.high, a.key) < std::tie(b.low, b.high, b.key);
+  });
+  return entries;
+}
+
+}  // namespace softstep

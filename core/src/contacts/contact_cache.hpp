@@ -1,0 +1,81 @@
+// The contacts' warm-start cache: what each manifold of a step left for the next step, found
+// by its body pair and key. Flat: the entries are the step's manifolds in input order, beside
+// a ContactKeyIndex from their keys to their positions. Both keep their memory between steps.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "contacts/contact_key_index.hpp"
+#include "softstep/contacts.hpp"
+
+namespace softstep {
+
+// What a manifold left for the next step's warm start, keyed by its ordered body pair and key.
+struct CachedManifold {
+  std::uint32_t body_a = 0;  // the slot that was A (impulses on B flip sign when A and B swap)
+  int point_count = 0;
+  std::array<std::uint32_t, kMaxContactPoints> feature_id{};
+  std::array<double, kMaxContactPoints> normal_impulse{};
+  // on B, world; zeros spelt out: {} leaves an Eigen vector uninitialized (gcc under ASan
+  // rightly warns that moving such a manifold reads them)
+  std::array<Eigen::Vector3d, kMaxContactPoints> friction_impulse{
+      Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+      Eigen::Vector3d::Zero()};
+  static_assert(kMaxContactPoints == 4, "one Zero() per point above");
+  std::array<double, kMaxContactPoints> max_normal_impulse{};
+  Eigen::Vector3d rolling_impulse = Eigen::Vector3d::Zero();  // on B, world
+};
+
+struct ContactCacheEntry {
+  ContactPairKey key;
+  CachedManifold manifold;
+};
+
+ContactPairKey contact_pair_key(const ContactManifold& m);
+
+class ContactCache {
+ public:
+  bool empty() const { return entries_.empty(); }
+  std::size_t size() const { return entries_.size(); }
+  std::span<const ContactCacheEntry> entries() const { return entries_; }
+
+  // The entry of this key, or nullptr. hint: where the key likely is (a manifold's position in
+  // its step: scenes tend to hand their manifolds in the same order every step), looked at
+  // before the index.
+  const ContactCacheEntry* find(const ContactPairKey& key, std::size_t hint = ~std::size_t{0}) const {
+    if (hint < entries_.size() && entries_[hint].key == key) return &entries_[hint];
+    const std::uint32_t at = index_.find(key);
+    return at == ContactKeyIndex::kAbsent ? nullptr : &entries_[at];
+  }
+
+  // Adds an entry unless its key is there already (then false, nothing changed).
+  bool insert(const ContactPairKey& key, const CachedManifold& manifold);
+
+  // Drops the entries that name this body (BodyId as generation << 32 | slot).
+  void erase_body(std::uint64_t body_word);
+
+  // A step writes its next cache in two parts. Its validation indexes the step's keys (the
+  // value of each is its manifold's position) with index_step, which returns the first
+  // position whose key repeats an earlier one's (or kNoRepeat); then, once the world may
+  // change, the entries are sized to the step's manifolds and each entry is written at its
+  // manifold's position (each by one thread). Until then the cache is scratch.
+  static constexpr std::size_t kNoRepeat = ~std::size_t{0};
+  std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous);
+  void size_for_step(std::size_t manifolds) { entries_.resize(manifolds); }
+  ContactCacheEntry& step_entry(std::size_t manifold) { return entries_[manifold]; }
+
+ private:
+  std::vector<ContactCacheEntry> entries_;
+  ContactKeyIndex index_;  // key -> position in entries_
+};
+
+// The cache's entries in the order of their keys (body pair, then key): the entries' own order
+// is the last step's input order, and the state hash and scene files need one that is not.
+std::vector<const ContactCacheEntry*> sorted_entries(const ContactCache& cache);
+
+}  // namespace softstep
