@@ -24,7 +24,7 @@ WorldSettings weightless(SimdWidth width = SimdWidth::Best) {
 }
 
 bool has_stage(const StepPlan& plan, PlanStage stage) {
-  return std::find(plan.stages.begin(), plan.stages.end(), stage) != plan.stages.end();
+  return plan.runs(stage);
 }
 
 TEST(AppliedForces, ActForOneStepAndAreThenCleared) {

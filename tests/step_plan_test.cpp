@@ -11,9 +11,7 @@
 namespace softstep {
 namespace {
 
-bool has_stage(const StepPlan& p, PlanStage s) {
-  return std::find(p.stages.begin(), p.stages.end(), s) != p.stages.end();
-}
+bool has_stage(const StepPlan& p, PlanStage s) { return p.runs(s); }
 
 bool has_row(const StepPlan& p, SpringRow row) {
   return std::any_of(p.kernels.begin(), p.kernels.end(),

@@ -261,9 +261,7 @@ TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
   o.layout = scenes::ChainLayout::Hanging;
   const scenes::ChainScene scene = scenes::build_chain(world, o);
   const StepPlan& plan = world.step_plan();
-  const auto runs = [&](PlanStage stage) {
-    return std::find(plan.stages.begin(), plan.stages.end(), stage) != plan.stages.end();
-  };
+  const auto runs = [&](PlanStage stage) { return plan.runs(stage); };
   EXPECT_TRUE(runs(PlanStage::ClearImpulses));
   EXPECT_TRUE(runs(PlanStage::TreeSolve));
   EXPECT_FALSE(runs(PlanStage::WarmStart));

@@ -63,8 +63,7 @@ void BM_JointStep(benchmark::State& state) {
   for (int i = 0; i < 3; ++i) world->step(kDt);  // pack, warm up
   for (auto _ : state) world->step(kDt);
   const StepPlan& plan = world->step_plan();
-  const bool relaxed =
-      std::find(plan.stages.begin(), plan.stages.end(), PlanStage::Relax) != plan.stages.end();
+  const bool relaxed = plan.runs(PlanStage::Relax);
   const double passes = s.solve_iterations + (relaxed ? s.relax_iterations : 0);
   const double row_solves = static_cast<double>(plan.rows_per_pass) * s.substeps * passes;
   state.SetLabel(kTypeNames[type]);

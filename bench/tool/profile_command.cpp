@@ -200,8 +200,7 @@ int profile_command(ProfileOptions o) {
   const double ms = median(samples.step_ms);
   // Each sub-step solves every row `iterations` times and relaxes it `relax` times, unless
   // the plan runs no relax pass (springs only: springs are not relaxed).
-  const std::vector<PlanStage>& planned = world.step_plan().stages;
-  const bool relaxed = std::find(planned.begin(), planned.end(), PlanStage::Relax) != planned.end();
+  const bool relaxed = world.step_plan().runs(PlanStage::Relax);
   const double joint_row_solves =
       run.rows * settings.substeps *
       (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));

@@ -120,7 +120,7 @@ void World::Impl::plan_contacts(const ContactLayout& c) {
   contact_stages.clear();
   if (c.manifolds == 0) return;
   const auto add = [&](bool on, PlanStage stage) {
-    if (!on || std::find(stages.begin(), stages.end(), stage) != stages.end()) return;
+    if (!on || p.runs(stage)) return;
     // Stages are listed in enum order.
     stages.insert(std::find_if(stages.begin(), stages.end(), [&](PlanStage s) { return s > stage; }),
                   stage);
@@ -137,6 +137,10 @@ void World::Impl::plan_contacts(const ContactLayout& c) {
 const StepPlan& World::step_plan() const {
   impl_->build_plan();
   return impl_->plan;
+}
+
+bool StepPlan::runs(PlanStage stage) const {
+  return std::find(stages.begin(), stages.end(), stage) != stages.end();
 }
 
 const char* plan_stage_name(PlanStage stage) {

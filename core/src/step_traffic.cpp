@@ -1,6 +1,5 @@
 #include "softstep/step_traffic.hpp"
 
-#include <algorithm>
 #include <numeric>
 
 #include "softstep/world.hpp"
@@ -28,9 +27,7 @@ double StepTraffic::total() const { return std::accumulate(bytes.begin(), bytes.
 StepTraffic step_traffic(const World& world) {
   const StepPlan& plan = world.step_plan();
   const WorldSettings& s = world.settings();
-  const auto runs = [&](PlanStage p) {
-    return std::find(plan.stages.begin(), plan.stages.end(), p) != plan.stages.end();
-  };
+  const auto runs = [&](PlanStage p) { return plan.runs(p); };
   double lanes = 0.0, impulses = 0.0;
   for (const PlanKernel& k : plan.kernels) {
     lanes += double(k.lane_bytes);

@@ -94,6 +94,8 @@ struct StepPlan {
   bool contact_rolling = false;
   bool contact_restitution = false;
   std::uint64_t builds = 0;         // how many times this world has built its plan
+
+  bool runs(PlanStage stage) const;  // stage is in `stages`
 };
 
 }  // namespace softstep
