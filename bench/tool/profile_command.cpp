@@ -231,8 +231,14 @@ int profile_command(ProfileOptions o) {
   std::string per_color;
   for (std::uint32_t n : layout.joints_per_color)
     per_color += (per_color.empty() ? "" : " ") + std::to_string(n);
-  std::printf("colors           %d used (joints per color: %s), overflow %u, lane fill %.3f\n",
-              layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
+  if (layout.colors_used == 0 && layout.overflow_joints == 0) {
+    // A contact-only scene: the joints' colouring has nothing to say (no lanes to fill); the
+    // contacts' own colours are on the contacts line.
+    std::printf("colors           no joints in lanes (contact colours: on the contacts line)\n");
+  } else {
+    std::printf("colors           %d used (joints per color: %s), overflow %u, lane fill %.3f\n",
+                layout.colors_used, per_color.c_str(), layout.overflow_joints, layout.lane_fill);
+  }
   std::printf("awake bodies     %zu, sleeping islands %zu\n", world.step_plan().awake_bodies,
               world.step_plan().sleeping_islands);
   print_contacts_line(contact_samples, world.step_plan(), world.settings());

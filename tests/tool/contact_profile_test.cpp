@@ -61,6 +61,9 @@ TEST(ContactProfile, PyramidPrintsItsContactsCollisionAndStages) {
     EXPECT_NE(out.find(line), std::string::npos) << line << " missing in\n" << out;
   // The collision line comes after the stages and is no share of the step: it is not in it.
   EXPECT_LT(out.find("\n  relax "), out.find("\n  collision (user's) "));
+  // No joints: the joints' colour line says so instead of "0 used (joints per color: )".
+  EXPECT_NE(out.find("colors           no joints in lanes"), std::string::npos) << out;
+  EXPECT_EQ(out.find("joints per color"), std::string::npos) << out;
 
   const nlohmann::json j = nlohmann::json::parse(read_text(dir + "/p.json"));
   EXPECT_EQ(j["bodies"], expected.boxes + 1);  // and the ground
