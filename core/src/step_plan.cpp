@@ -98,8 +98,12 @@ void World::Impl::build_plan() {
   add(exact && settings.relax_iterations > 0, PlanStage::TreeRelax);
   add(bodies_awake, PlanStage::Store);
   plan = std::move(p);
-  contact_stages.clear();  // a new plan: the next step's contacts add theirs
+  contact_stages.clear();
   plan_built = true;
+  // Until the next step hands its own contacts, the plan shows the last step's, as a plan that
+  // is not rebuilt does: a profile that reads the plan after a step whose end put bodies to
+  // sleep (which rebuilds it) saw no contacts for that step.
+  plan_contacts(contact_solver->layout());
 }
 
 void World::Impl::plan_contacts(const ContactLayout& c) {

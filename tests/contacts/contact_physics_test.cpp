@@ -228,6 +228,36 @@ TEST(ContactPhysics, PlanShowsContactStagesOnlyWithContacts) {
   EXPECT_EQ(world.step_plan().contact_manifolds, 0u);
 }
 
+// A step whose end puts a body to sleep rebuilds the plan (the awake bodies changed); the
+// rebuilt plan still shows that step's contacts, as an unchanged plan does, until the next
+// step hands its own. One box rests and falls asleep; the other slides without friction and
+// stays awake.
+TEST(ContactPhysics, PlanKeepsTheStepsContactsWhenTheStepPutsABodyToSleep) {
+  WorldSettings s;
+  s.time_to_sleep = 0.25;
+  World world(s);
+  const BodyId ground = add_ground(world);
+  const BodyId resting = add_box(world, {0.0, 0.5, 0.0}, 1.0, kHalf);
+  const BodyId sliding = add_box(world, {3.0, 0.5, 0.0}, 1.0, kHalf);
+  world.set_linear_velocity(sliding, {1.0, 0.0, 0.0});
+  bool fell_asleep = false;
+  for (int i = 0; i < 120 && !fell_asleep; ++i) {
+    std::array<ContactManifold, 2> m{box_on_ground(world, ground, resting, kHalf),
+                                     box_on_ground(world, ground, sliding, kHalf, 0.0, 0.0)};
+    const std::uint64_t builds = world.step_plan().builds;
+    world.step(kDt, m);
+    fell_asleep = !world.is_awake(resting);
+    if (!fell_asleep) continue;
+    const StepPlan& plan = world.step_plan();
+    ASSERT_GT(plan.builds, builds);  // the case of this test: the plan was rebuilt
+    EXPECT_EQ(plan.contact_manifolds, 2u);
+    EXPECT_EQ(plan.contact_points, 8u);
+    EXPECT_TRUE(plan.runs(PlanStage::PrepareContacts));
+  }
+  EXPECT_TRUE(fell_asleep);
+  EXPECT_TRUE(world.is_awake(sliding));
+}
+
 // A column of boxes on the ground, each step's manifolds made from the poses.
 struct Stack {
   World world;
