@@ -26,8 +26,13 @@ struct ContactSamples {
   std::vector<double> manifolds, points, rows, load_ms;
   // Per step: the scene's own narrow phase before it (empty when the scene has none).
   std::vector<double> collision_ms;
+  // Per such step: World::contact_readings() asked right after it (the step leaves the
+  // readings to be read out of its warm-start cache when a caller asks: a user who reads them
+  // pays this beside the step).
+  std::vector<double> readings_ms;
   std::size_t colors = 0, overflow = 0;  // the last step's
-  // After a step; `rows` from contact_rows before it, or NaN.
+  // After a step; `rows` from contact_rows before it, or NaN. Asks for the step's readings
+  // (timed into readings_ms).
   void add_step(const World& world, double rows);
   double median_rows() const;  // 0 with no rows known
 };

@@ -20,7 +20,7 @@ void hash_contact_cache(StateHasher& h, const ContactCache& cache) {
     h.value(k.high);
     h.value(k.key);
     h.value(c.body_a);
-    h.value(c.point_count);
+    h.value(static_cast<int>(c.point_count));  // hashed as the int it was
     for (std::size_t p = 0; p < static_cast<std::size_t>(c.point_count); ++p) {
       h.value(c.feature_id[p]);
       h.value(c.normal_impulse[p]);

@@ -276,6 +276,7 @@ void World::step(double dt) {
 }
 
 const std::vector<ContactReading>& World::contact_readings() const {
+  impl_->settle_contact_readings();
   return impl_->contact_readings;
 }
 
@@ -320,7 +321,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   const simd::SubstepContext ctx = make_context(s, h);
   ContactSolver& contact_solver = *w.contact_solver;
   contact_solver.load({contacts, &w.bodies, &w.contact_cache, &w.contact_cache_next,
-                       &w.contact_readings, s.warm_start});
+                       s.warm_start});
   w.plan_contacts(contact_solver.layout());
   const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
   // Contacts run beside the joints in the same stages: with contacts, the solve stages run
@@ -519,6 +520,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
   std::swap(w.contact_cache, w.contact_cache_next);
+  w.contact_readings_pending = true;
   w.last_substep = h;
   w.joints_without_history = false;
   w.clear_forces();

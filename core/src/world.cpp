@@ -206,6 +206,7 @@ void World::destroy_body(BodyId id) {
   // a scene file saved before that step would name a dead body. (A pass over the cache: a
   // world that destroys bodies by the thousand between steps may want a per-body index.)
   if (!w.contact_cache.empty()) {
+    w.settle_contact_readings();
     const std::uint64_t word = (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
     w.contact_cache.erase_body(word);
   }

@@ -201,7 +201,17 @@ struct World::Impl {
   std::unique_ptr<ContactSolver> contact_solver;
   ContactCache contact_cache;
   ContactCache contact_cache_next;  // filled by a step, then swapped in
-  std::vector<ContactReading> contact_readings;
+  // What the last step's contacts applied, read out of contact_cache when first asked for
+  // (World::contact_readings): a step whose caller never asks does not write them (0.4 ms of
+  // the 5,050-box pyramid's 6.5 ms on one thread). Whatever changes contact_cache between
+  // steps settles them first, so they stay the step's.
+  mutable std::vector<ContactReading> contact_readings;
+  mutable bool contact_readings_pending = false;
+  void settle_contact_readings() const {
+    if (!contact_readings_pending) return;
+    read_out(contact_cache, contact_readings);
+    contact_readings_pending = false;
+  }
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
   SolverBodies solver_bodies;

@@ -98,7 +98,7 @@ TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
   next.size_for_step(unique.size());
   for (std::size_t i = 0; i < unique.size(); ++i) {
     next.step_entry(i).key = contact_pair_key(unique[i]);
-    next.step_entry(i).manifold.point_count = static_cast<int>(i) + 1;
+    next.step_entry(i).manifold.point_count = static_cast<std::uint16_t>(i + 1);
   }
   // The same manifolds in the same order: the index is copied; in another order: rebuilt.
   // Either way every key finds its manifold's position, without a hint and with a wrong one.
@@ -131,7 +131,7 @@ TEST(ContactCache, InsertRefusesARepeatAndErasingABodyKeepsTheRestFound) {
   ContactCache cache;
   CachedManifold c;
   for (std::uint32_t body = 1; body <= 6; ++body) {
-    c.point_count = static_cast<int>(body);
+    c.point_count = static_cast<std::uint16_t>(body);
     EXPECT_TRUE(cache.insert(contact_pair_key(manifold(body, body + 1, 0)), c));
   }
   EXPECT_FALSE(cache.insert(contact_pair_key(manifold(2, 1, 0)), c)) << "(1, 2) is there";

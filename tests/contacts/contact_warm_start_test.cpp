@@ -198,5 +198,40 @@ TEST(ContactWarmStart, WithWarmStartOffEverySubStepStartsFromZero) {
   EXPECT_NEAR(total, weight, 0.05 * weight);
 }
 
+// The readings are read out of the warm-start cache when first asked for, not by the step;
+// they must still be the step's whatever happens to the cache before they are asked for. Two
+// identical worlds step a column; one asks for its readings before the top box is destroyed,
+// the other only after (the destruction takes that box's entry out of the cache and moves
+// the others up): both see the same readings, bit for bit, the dead box's manifold included.
+TEST(ContactWarmStart, ReadingsAskedAfterADestructionAreTheSteps) {
+  Column asked_before, asked_after;
+  build(asked_before, 4, Eigen::Vector3d::Zero());
+  build(asked_after, 4, Eigen::Vector3d::Zero());
+  for (int i = 0; i < 30; ++i) {
+    asked_before.world.step(kDt, asked_before.contacts());
+    asked_after.world.step(kDt, asked_after.contacts());
+  }
+  const std::vector<ContactReading> before = asked_before.world.contact_readings();
+  asked_before.world.destroy_body(asked_before.boxes.back());
+  asked_after.world.destroy_body(asked_after.boxes.back());
+  const std::vector<ContactReading>& after = asked_after.world.contact_readings();
+  ASSERT_EQ(before.size(), 4u);
+  ASSERT_EQ(after.size(), before.size());
+  EXPECT_EQ(after.back().body_b, asked_after.boxes.back());  // the dead box's manifold
+  for (std::size_t j = 0; j < before.size(); ++j) {
+    EXPECT_EQ(after[j].body_a, before[j].body_a) << "manifold " << j;
+    EXPECT_EQ(after[j].body_b, before[j].body_b) << "manifold " << j;
+    ASSERT_EQ(after[j].point_count, before[j].point_count) << "manifold " << j;
+    for (int k = 0; k < before[j].point_count; ++k) {
+      const auto p = static_cast<std::size_t>(k);
+      EXPECT_EQ(after[j].points[p].normal_impulse, before[j].points[p].normal_impulse);
+      EXPECT_EQ(after[j].points[p].friction_impulse, before[j].points[p].friction_impulse);
+      EXPECT_EQ(after[j].points[p].is_new, before[j].points[p].is_new);
+      EXPECT_GT(before[j].points[p].normal_impulse, 0.0) << "manifold " << j;
+    }
+  }
+  EXPECT_EQ(asked_before.world.contact_readings().size(), before.size());
+}
+
 }  // namespace
 }  // namespace softstep::test

@@ -55,6 +55,28 @@ void ContactCache::erase_body(std::uint64_t body_word) {
   }
 }
 
+void read_out(const ContactCache& cache, std::vector<ContactReading>& readings) {
+  const auto body = [](std::uint64_t word) {
+    return BodyId{static_cast<std::uint32_t>(word), static_cast<std::uint32_t>(word >> 32)};
+  };
+  readings.resize(cache.size());
+  for (std::size_t i = 0; i < cache.size(); ++i) {
+    const ContactCacheEntry& e = cache.entries()[i];
+    const CachedManifold& c = e.manifold;
+    ContactReading& r = readings[i];
+    r = ContactReading{};
+    const bool a_is_low = static_cast<std::uint32_t>(e.key.low) == c.body_a;
+    r.body_a = body(a_is_low ? e.key.low : e.key.high);
+    r.body_b = body(a_is_low ? e.key.high : e.key.low);
+    r.point_count = c.point_count;
+    r.rolling_impulse = c.rolling_impulse;
+    for (std::size_t k = 0; k < c.point_count; ++k) {
+      r.points[k] = {c.normal_impulse[k], c.friction_impulse[k], c.max_normal_impulse[k],
+                     ((c.new_points >> k) & 1u) != 0};
+    }
+  }
+}
+
 std::vector<const ContactCacheEntry*> sorted_entries(const ContactCache& cache) {
   std::vector<const ContactCacheEntry*> entries;
   entries.reserve(cache.size());

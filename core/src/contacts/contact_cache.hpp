@@ -18,7 +18,10 @@ namespace softstep {
 // What a manifold left for the next step's warm start, keyed by its ordered body pair and key.
 struct CachedManifold {
   std::uint32_t body_a = 0;  // the slot that was A (impulses on B flip sign when A and B swap)
-  int point_count = 0;
+  std::uint16_t point_count = 0;
+  // Bit i: point i had no twin in the step before (ContactPointReading::is_new). Not part of
+  // the warm-start state: no scene file or state hash holds it.
+  std::uint16_t new_points = 0;
   std::array<std::uint32_t, kMaxContactPoints> feature_id{};
   std::array<double, kMaxContactPoints> normal_impulse{};
   // on B, world; zeros spelt out: {} leaves an Eigen vector uninitialized (gcc under ASan
@@ -73,6 +76,10 @@ class ContactCache {
   std::vector<ContactCacheEntry> entries_;
   ContactKeyIndex index_;  // key -> position in entries_
 };
+
+// The readings of the step that wrote this cache (its entries are that step's manifolds in
+// input order), into `readings`, which keeps its memory.
+void read_out(const ContactCache& cache, std::vector<ContactReading>& readings);
 
 // The cache's entries in the order of their keys (body pair, then key): the entries' own order
 // is the last step's input order, and the state hash and scene files need one that is not.

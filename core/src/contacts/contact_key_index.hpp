@@ -14,7 +14,7 @@
 namespace softstep {
 
 struct ContactPairKey {
-  std::uint64_t low, high;  // (generation << 32 | slot) of the lower and the higher slot
+  std::uint64_t low, high;  // the pair's two (generation << 32 | slot) words, the smaller first
   std::uint64_t key;
   bool operator==(const ContactPairKey&) const = default;
 };

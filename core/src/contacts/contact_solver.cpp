@@ -50,8 +50,9 @@ struct Match {
   double sign = 1.0;
 };
 
-Match find_match(const ContactManifold& m, std::uint32_t index, const ContactCache& cache) {
-  const ContactCacheEntry* entry = cache.find(contact_pair_key(m), index);
+Match find_match(const ContactManifold& m, const ContactPairKey& key, std::uint32_t index,
+                 const ContactCache& cache) {
+  const ContactCacheEntry* entry = cache.find(key, index);
   if (entry == nullptr) return {};
   return {&entry->manifold, entry->manifold.body_a == m.body_a.index ? 1.0 : -1.0};
 }
@@ -63,6 +64,33 @@ int matching_point(const Match& match, std::uint32_t feature_id) {
     if (match.cached->feature_id[k] == feature_id) return k;
   }
   return -1;
+}
+
+// What reading a lane back needs of its manifold besides the lanes, written while packing in
+// the solver's order: reading back then walks these in order instead of returning to each
+// manifold and to its old cache entry at random (one cache line here against six and four).
+struct PackedManifold {
+  ContactPairKey key;
+  Match match;
+  std::array<std::uint32_t, kMaxContactPoints> feature_id;
+  std::uint16_t point_count;
+  std::uint16_t new_points;  // CachedManifold::new_points
+  bool a_is_low;             // body A is key.low (else key.high)
+};
+
+PackedManifold packed_manifold(const ContactManifold& m, std::uint32_t index,
+                               const ContactCache& previous) {
+  PackedManifold packed{};
+  packed.key = contact_pair_key(m);
+  packed.match = find_match(m, packed.key, index, previous);
+  packed.point_count = static_cast<std::uint16_t>(m.point_count);
+  packed.a_is_low = packed.key.low == (std::uint64_t(m.body_a.generation) << 32 | m.body_a.index);
+  for (int i = 0; i < m.point_count; ++i) {
+    const std::uint32_t feature = m.points[static_cast<std::size_t>(i)].feature_id;
+    packed.feature_id[static_cast<std::size_t>(i)] = feature;
+    if (matching_point(packed.match, feature) < 0) packed.new_points |= static_cast<std::uint16_t>(1u << i);
+  }
+  return packed;
 }
 
 // Lanes are filled and read in the solver's order (by colour), so the manifolds, their cache
@@ -151,43 +179,40 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   }
 }
 
-// A lane's impulses as the reading and the cache entry of its manifold (match: its twin in the
-// last step's cache, which tells the reading whether each point is new).
+// A lane's impulses as its manifold's entry in the next cache (which is also what the
+// readings are read from, on demand: read_out).
 template <int W>
-void read_lane(const simd::ContactLanes<W>& g, int lane, const ContactManifold& m,
-               const Match& match, ContactReading& reading, CachedManifold& next) {
+void read_lane(const simd::ContactLanes<W>& g, int lane, const PackedManifold& packed,
+               ContactCacheEntry& next_entry) {
   const auto get3 = [&](const float(&src)[3][W]) {
     return Eigen::Vector3d(src[0][lane], src[1][lane], src[2][lane]);
   };
   const Eigen::Vector3d t1 = get3(g.tangent[0]);
   const Eigen::Vector3d t2 = get3(g.tangent[1]);
+  next_entry.key = packed.key;
+  CachedManifold& next = next_entry.manifold;
   next = CachedManifold{};
-  next.body_a = m.body_a.index;
-  next.point_count = m.point_count;
+  next.body_a = static_cast<std::uint32_t>(packed.a_is_low ? packed.key.low : packed.key.high);
+  next.point_count = packed.point_count;
+  next.new_points = packed.new_points;
   next.rolling_impulse = get3(g.rolling_impulse);
-  reading.rolling_impulse = next.rolling_impulse;
-  for (int i = 0; i < m.point_count; ++i) {
+  for (int i = 0; i < packed.point_count; ++i) {
     const auto& p = g.point[i];
     const auto s = static_cast<std::size_t>(i);
-    next.feature_id[s] = m.points[s].feature_id;
+    next.feature_id[s] = packed.feature_id[s];
     next.normal_impulse[s] = p.normal_impulse[lane];
     next.friction_impulse[s] =
         double(p.tangent_impulse[0][lane]) * t1 + double(p.tangent_impulse[1][lane]) * t2;
     next.max_normal_impulse[s] = p.max_normal_impulse[lane];
-    reading.points[s] = {next.normal_impulse[s], next.friction_impulse[s],
-                         next.max_normal_impulse[s],
-                         matching_point(match, m.points[s].feature_id) < 0};
   }
 }
 
 // A manifold left out of the lanes (both ends static or asleep): it keeps what it had.
-void carry_over(const ContactManifold& m, const Match& match, ContactReading& reading,
-                CachedManifold& next) {
+void carry_over(const ContactManifold& m, const Match& match, CachedManifold& next) {
   next = CachedManifold{};
   next.body_a = m.body_a.index;
-  next.point_count = m.point_count;
+  next.point_count = static_cast<std::uint16_t>(m.point_count);
   if (match.cached) next.rolling_impulse = match.sign * match.cached->rolling_impulse;
-  reading.rolling_impulse = next.rolling_impulse;
   for (int i = 0; i < m.point_count; ++i) {
     const auto s = static_cast<std::size_t>(i);
     const int k = matching_point(match, m.points[s].feature_id);
@@ -196,8 +221,9 @@ void carry_over(const ContactManifold& m, const Match& match, ContactReading& re
       const auto c = static_cast<std::size_t>(k);
       next.normal_impulse[s] = match.cached->normal_impulse[c];
       next.friction_impulse[s] = match.sign * match.cached->friction_impulse[c];
+    } else {
+      next.new_points |= static_cast<std::uint16_t>(1u << i);
     }
-    reading.points[s] = {next.normal_impulse[s], next.friction_impulse[s], 0.0, k < 0};
   }
 }
 
@@ -319,8 +345,7 @@ class ContactSolverImpl final : public ContactSolver {
       begin = end;
     }
     // Sized here, written by the team at the manifolds' positions.
-    matches_.resize(entries_.size());
-    step.readings->resize(manifolds.size());
+    packed_.resize(entries_.size());
     step.next->size_for_step(manifolds.size());
     layout_.load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -371,7 +396,9 @@ class ContactSolverImpl final : public ContactSolver {
     for (std::size_t k = mine.begin; k < mine.end; ++k) {
       const std::uint32_t index = left_out_[k];
       const ContactManifold& m = step_.manifolds[index];
-      carry_over(m, find_match(m, index, *step_.previous), start_reading(index), next_entry(index));
+      ContactCacheEntry& next = step_.next->step_entry(index);
+      next.key = contact_pair_key(m);
+      carry_over(m, find_match(m, next.key, index, *step_.previous), next.manifold);
     }
   }
 
@@ -422,9 +449,9 @@ class ContactSolverImpl final : public ContactSolver {
           if (e + kFetchAhead < r.end_entry) fetch_for_packing(entries_[e + kFetchAhead].manifold);
           const std::uint32_t index = entries_[e].manifold;
           const ContactManifold& m = step_.manifolds[index];
-          matches_[e] = find_match(m, index, *step_.previous);
+          packed_[e] = packed_manifold(m, index, *step_.previous);
           fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
-                       step_.warm_start ? matches_[e] : Match{});
+                       step_.warm_start ? packed_[e].match : Match{});
         }
       }
     }
@@ -459,8 +486,7 @@ class ContactSolverImpl final : public ContactSolver {
         for (int lane = 0; lane < V; ++lane) {
           const std::uint32_t index = g.id[lane];
           if (index == kPadding) continue;
-          read_lane<V>(g, lane, step_.manifolds[index], matches_[first + lane],
-                       start_reading(index), next_entry(index));
+          read_lane<V>(g, lane, packed_[first + lane], step_.next->step_entry(index));
         }
       }
     }
@@ -475,25 +501,7 @@ class ContactSolverImpl final : public ContactSolver {
   }
 
   void fetch_for_storing(std::uint32_t index) const {
-    fetch(step_.manifolds[index]);
-    fetch_for_writing((*step_.readings)[index]);
     fetch_for_writing(step_.next->step_entry(index));
-  }
-
-  ContactReading& start_reading(std::uint32_t index) {
-    const ContactManifold& m = step_.manifolds[index];
-    ContactReading& r = (*step_.readings)[index];
-    r = ContactReading{};
-    r.body_a = m.body_a;
-    r.body_b = m.body_b;
-    r.point_count = m.point_count;
-    return r;
-  }
-
-  CachedManifold& next_entry(std::uint32_t index) {
-    ContactCacheEntry& e = step_.next->step_entry(index);
-    e.key = contact_pair_key(step_.manifolds[index]);
-    return e.manifold;
   }
 
   template <int V>
@@ -531,9 +539,8 @@ class ContactSolverImpl final : public ContactSolver {
   std::vector<Entry> entries_;   // sorted by order_key
   std::array<std::uint32_t, kOrderKeys> counts_{};
   std::vector<std::uint32_t> left_out_;  // manifolds not in lanes, in input order
-  // Per entry (in the solver's order, so that each thread writes a range of its own): the
-  // manifold's twin in the last step's cache.
-  std::vector<Match> matches_;
+  // Per entry (in the solver's order, so that each thread writes a range of its own).
+  std::vector<PackedManifold> packed_;
   std::vector<std::uint32_t> body_colors_;  // per body slot, scratch of load (all zero between)
   std::uint64_t used_colors_ = 0;
   // The first layout_.colors are this step's; the rest keep their memory for later steps.

@@ -26,7 +26,6 @@ struct ContactStep {
   const std::vector<BodySlot>* bodies = nullptr;
   const ContactCache* previous = nullptr;  // the last step's warm-start cache
   ContactCache* next = nullptr;  // indexed by the step's validation (ContactCache::index_step)
-  std::vector<ContactReading>* readings = nullptr;
   bool warm_start = true;
 };
 
@@ -45,7 +44,7 @@ class ContactSolver {
  public:
   virtual ~ContactSolver() = default;
   // Serial, before the step's threads start: colours the manifolds, orders them by colour,
-  // signature and points, and lays out their groups; sizes the readings and the next cache.
+  // signature and points, and lays out their groups; sizes the next cache.
   // Manifolds whose bodies are all static or asleep are left out; their cache entries carry
   // over. Nothing of the world is read after this but the step's manifolds and bodies.
   virtual void load(const ContactStep& step) = 0;
@@ -68,8 +67,8 @@ class ContactSolver {
                      const simd::ContactContext&, const solver::Share&) = 0;
   virtual void restitute(const simd::BodyArrays&, const simd::SubstepContext&,
                          const simd::ContactContext&, const solver::Share&) = 0;
-  // Each thread its share, after the last contact pass (a barrier between): the readings and
-  // the next cache's entries, both at the manifolds' input positions.
+  // Each thread its share, after the last contact pass (a barrier between): the next cache's
+  // entries at the manifolds' input positions (the readings are read from them on demand).
   virtual void store(const solver::Share&) = 0;
 };
 

@@ -72,7 +72,7 @@ void read_contact_cache(const Source& source, ObjectReader& solver_state,
     if (points.empty() || points.size() > kMaxContactPoints)
       fail(source, fields.path_of("points"),
            "expected 1 to " + std::to_string(kMaxContactPoints) + " points");
-    c.point_count = static_cast<int>(points.size());
+    c.point_count = static_cast<std::uint16_t>(points.size());
     for (std::size_t p = 0; p < points.size(); ++p) {
       const std::string point_path = fields.path_of("points") + "/" + std::to_string(p);
       const json& point = points[p];
@@ -101,6 +101,7 @@ void read_contact_cache(const Source& source, ObjectReader& solver_state,
     if (!cache.insert(contact_pair_key(pair), c))
       fail(source, path, "a second entry for the same two bodies and key");
   }
+  WorldInternals::of(world).settle_contact_readings();
   WorldInternals::of(world).contact_cache = std::move(cache);
 }
 
