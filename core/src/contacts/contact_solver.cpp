@@ -98,16 +98,24 @@ PackedManifold packed_manifold(const ContactManifold& m, std::uint32_t index,
 // manifolds ahead, so that the misses overlap instead of stalling one after another.
 constexpr std::size_t kFetchAhead = 8;
 
-template <class T>
-void fetch(const T& object) {
-  const char* p = reinterpret_cast<const char*>(&object);
-  for (std::size_t at = 0; at < sizeof(T); at += 64) __builtin_prefetch(p + at);
+// Every cache line the object touches (an object that does not start on a line's start
+// reaches into one more line than sizeof / 64).
+template <int kForWriting, class T>
+void fetch_lines(const T& object) {
+  const auto begin = reinterpret_cast<std::uintptr_t>(&object) & ~std::uintptr_t{63};
+  const auto end = reinterpret_cast<std::uintptr_t>(&object) + sizeof(T);
+  for (std::uintptr_t at = begin; at < end; at += 64)
+    __builtin_prefetch(reinterpret_cast<const void*>(at), kForWriting);
 }
 
 template <class T>
-void fetch_for_writing(T& object) {
-  char* p = reinterpret_cast<char*>(&object);
-  for (std::size_t at = 0; at < sizeof(T); at += 64) __builtin_prefetch(p + at, 1);
+void fetch(const T& object) {
+  fetch_lines<0>(object);
+}
+
+template <class T>
+void fetch_for_writing(const T& object) {
+  fetch_lines<1>(object);
 }
 
 template <class Group>
