@@ -29,6 +29,7 @@ void ContactSamples::add_step(const World& world, double step_rows) {
   points.push_back(double(plan.contact_points));
   if (!std::isnan(step_rows)) rows.push_back(step_rows);
   load_ms.push_back(world.last_step_profile().contact_load_ms);
+  check_ms.push_back(world.last_step_profile().contact_check_ms);
   const auto start = std::chrono::steady_clock::now();
   (void)world.contact_readings();
   readings_ms.push_back(
@@ -87,6 +88,13 @@ void print_contact_stage_lines(const ContactSamples& s, double step_ms) {
                 "stages; matching and packing are in prepare, reading back in store)\n",
                 "contact load", load, step_ms > 0 ? 100.0 * load / step_ms : 0.0);
   }
+  if (s.steps > 0) {
+    const double check = median(s.check_ms);
+    std::printf(
+        "  %-22s %8.3f  %5.1f %%  (softstep: every field checked and the keys indexed "
+        "before anything changes; serial)\n",
+        "contact checks", check, step_ms > 0 ? 100.0 * check / step_ms : 0.0);
+  }
   if (!s.collision_ms.empty()) {
     std::printf("  %-22s %8.3f  (the scene's narrow phase before each step, the user's part: "
                 "not in the step)\n",
@@ -112,6 +120,7 @@ nlohmann::json contacts_json(const ContactSamples& s, const StepPlan& plan,
           {"colors", s.colors},
           {"overflow", s.overflow},
           {"median_load_ms", median(s.load_ms)},
+          {"median_check_ms", median(s.check_ms)},
           {"median_readings_ms", median(s.readings_ms)},
           {"median_collision_ms", s.collision_ms.empty() ? kNaN : median(s.collision_ms)}};
 }

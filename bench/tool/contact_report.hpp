@@ -23,7 +23,7 @@ struct ContactSamples {
   long steps = 0;  // steps that had contacts in lanes
   // Per such step: from its plan and profile, and the rows (NaN when the contacts were not
   // seen, as in a replayed recording: then no rows figure is printed).
-  std::vector<double> manifolds, points, rows, load_ms;
+  std::vector<double> manifolds, points, rows, load_ms, check_ms;
   // Per step: the scene's own narrow phase before it (empty when the scene has none).
   std::vector<double> collision_ms;
   // Per such step: World::contact_readings() asked right after it (the step leaves the

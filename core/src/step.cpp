@@ -312,7 +312,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
                            validation::format(validation::kMaxSubstep) + "] s");
   }
   const float h = static_cast<float>(substep);
+  const auto check_start = std::chrono::steady_clock::now();
   validation::contacts("step", w, contacts, w.contact_cache_next);
+  const auto checked = std::chrono::steady_clock::now();
   wake_touched(w, contacts);
   // A step that colours and packs, or lists the bodies anew, first touches fresh memory: its
   // time says nothing about the thread count.
@@ -512,6 +514,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     p.threads = threads;
     p.thread_switches = w.thread_policy.switches();
     p.contact_load_ms = contact_solver.layout().load_ms;
+    p.contact_check_ms = std::chrono::duration<double, std::milli>(checked - check_start).count();
     p.stage_ms.fill(0.0);
     for (const StageEvent& e : events[0])
       p.stage_ms[static_cast<std::size_t>(e.stage)] += (e.end_us - e.start_us) * 1e-3;

@@ -56,7 +56,7 @@ TEST(ContactProfile, PyramidPrintsItsContactsCollisionAndStages) {
   EXPECT_NE(out.find("contact stages   prepare_contacts warm_start solve relax"),
             std::string::npos)
       << out;
-  for (const char* line : {"\n  solve ", "\n  relax ", "\n  contact load ",
+  for (const char* line : {"\n  solve ", "\n  relax ", "\n  contact load ", "\n  contact checks ",
                            "\n  collision (user's) ", "\n  step() call ", "serial share"})
     EXPECT_NE(out.find(line), std::string::npos) << line << " missing in\n" << out;
   // The collision line comes after the stages and is no share of the step: it is not in it.
@@ -78,6 +78,7 @@ TEST(ContactProfile, PyramidPrintsItsContactsCollisionAndStages) {
   EXPECT_GE(j["contacts"]["colors"].get<int>(), 1);
   EXPECT_GT(j["contacts"]["median_collision_ms"].get<double>(), 0.0);
   EXPECT_GT(j["contacts"]["median_load_ms"].get<double>(), 0.0);
+  EXPECT_GT(j["contacts"]["median_check_ms"].get<double>(), 0.0);
   const std::vector<std::string> stages = j["contacts"]["stages"];
   EXPECT_EQ(stages, (std::vector<std::string>{"prepare_contacts", "warm_start", "solve", "relax"}));
   // ns per row counts the contact rows: the step over (rows x 4 sub-steps x (1 solve + 1 relax)).

@@ -45,6 +45,9 @@ struct StepProfile {
   // the step). Matching them with the last step's cache and packing their lanes run on the
   // step's threads in the prepare stage; reading their impulses back, in the store stage.
   double contact_load_ms = 0.0;
+  // Of serial_ms: checking every field of the step's contacts and indexing their keys, before
+  // anything changes.
+  double contact_check_ms = 0.0;
   // Of the whole step() call, the time outside the threads' team, which one thread runs
   // whatever the thread count: checking the input (the contacts' too), the plan, the contact
   // load, the geometric-inertia sums, sleep bookkeeping and recording. Its share of the call bounds

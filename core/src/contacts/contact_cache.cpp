@@ -5,14 +5,6 @@
 
 namespace softstep {
 
-ContactPairKey contact_pair_key(const ContactManifold& m) {
-  const auto word = [](BodyId id) {
-    return (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
-  };
-  const std::uint64_t a = word(m.body_a), b = word(m.body_b);
-  return {std::min(a, b), std::max(a, b), m.key};
-}
-
 bool ContactCache::insert(const ContactPairKey& key, const CachedManifold& manifold) {
   if (entries_.empty()) index_.reset(0);
   if (index_.insert(key, static_cast<std::uint32_t>(entries_.size())) !=
@@ -25,13 +17,18 @@ bool ContactCache::insert(const ContactPairKey& key, const CachedManifold& manif
 
 std::size_t ContactCache::index_step(std::span<const ContactManifold> manifolds,
                                      const ContactCache& previous) {
+  bool unchanged = manifolds.size() == previous.size();
+  for (std::size_t i = 0; unchanged && i < manifolds.size(); ++i) {
+    unchanged = previous.same_key_at(i, manifolds[i]);
+  }
+  return index_step(manifolds, previous, unchanged);
+}
+
+std::size_t ContactCache::index_step(std::span<const ContactManifold> manifolds,
+                                     const ContactCache& previous, bool unchanged) {
   // A scene at rest hands the same manifolds in the same order step after step: their keys
   // are then the previous step's, which were unique, at the same positions, and so is the index.
-  bool same = manifolds.size() == previous.size();
-  for (std::size_t i = 0; same && i < manifolds.size(); ++i) {
-    same = contact_pair_key(manifolds[i]) == previous.entries_[i].key;
-  }
-  if (same) {
+  if (unchanged) {
     index_ = previous.index_;  // the same size: a copy into the memory it has
     return kNoRepeat;
   }

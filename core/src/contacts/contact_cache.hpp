@@ -3,12 +3,12 @@
 // a ContactKeyIndex from their keys to their positions. Both keep their memory between steps.
 #pragma once
 
+#include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "contacts/contact_key_index.hpp"
 #include "softstep/contacts.hpp"
@@ -39,7 +39,14 @@ struct ContactCacheEntry {
   CachedManifold manifold;
 };
 
-ContactPairKey contact_pair_key(const ContactManifold& m);
+// Inline: the step's validation compares every manifold's key with last step's.
+inline ContactPairKey contact_pair_key(const ContactManifold& m) {
+  const auto word = [](BodyId id) {
+    return (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
+  };
+  const std::uint64_t a = word(m.body_a), b = word(m.body_b);
+  return {std::min(a, b), std::max(a, b), m.key};
+}
 
 class ContactCache {
  public:
@@ -69,6 +76,19 @@ class ContactCache {
   // manifold's position (each by one thread). Until then the cache is scratch.
   static constexpr std::size_t kNoRepeat = ~std::size_t{0};
   std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous);
+  // The same when the caller has found out, as it checked the manifolds, whether their keys
+  // are the previous step's at the same positions (`unchanged`: same_key_at for every
+  // manifold and the same count; false when unsure).
+  std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous,
+                         bool unchanged);
+  bool same_key_at(std::size_t position, const ContactManifold& m) const {
+    return position < entries_.size() && entries_[position].key == contact_pair_key(m);
+  }
+  // Starts loading the entry at this position (when there is one) ahead of same_key_at: the
+  // entries are a few cache lines apart, too far for the hardware to guess.
+  void prefetch_key(std::size_t position) const {
+    if (position < entries_.size()) __builtin_prefetch(&entries_[position].key);
+  }
   void size_for_step(std::size_t manifolds) { entries_.resize(manifolds); }
   ContactCacheEntry& step_entry(std::size_t manifold) { return entries_[manifold]; }
 

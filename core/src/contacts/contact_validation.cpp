@@ -1,5 +1,6 @@
 #include "contacts/contact_validation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -107,16 +108,39 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
 
 void contacts(std::string_view call, const World::Impl& w,
               std::span<const ContactManifold> manifolds, ContactCache& next) {
-  // Keys only read ids, so they are safe to index before the fields are checked; errors are
-  // still reported for the first manifold in input order that breaks any rule.
-  const std::size_t repeat = next.index_step(manifolds, w.contact_cache);
+  // One pass over the manifolds checks the rules and whether the keys are last step's at the
+  // same positions (then the index is last step's too), fetching last step's keys ahead. On
+  // the 5,050-box pyramid's 14,950 manifolds: 0.53 ms, against 0.90 ms as two passes (keys,
+  // then rules; medians of 5 alternated runs, 2026-11-26). Split between two threads the two
+  // passes took longer, 1.4 ms: the caller's thread had just written the manifolds, and the
+  // second thread read its half out of the other core's cache after waking.
+  constexpr std::size_t kNone = ~std::size_t{0};
+  const ContactCache& previous = w.contact_cache;
+  bool unchanged = manifolds.size() == previous.size();
+  std::size_t failure = kNone;
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
     const ContactManifold& m = manifolds[i];
-    if (!passes(w, m)) describe_failure(call, w, m, i);
-    if (i == repeat) {
-      reject(call, "contacts[" + std::to_string(i) + "].key", std::to_string(m.key),
-             "another manifold of this step has the same body pair and key");
+    if (unchanged) {
+      constexpr std::size_t kAhead = 8;  // manifolds
+      previous.prefetch_key(i + kAhead);
+      unchanged = previous.same_key_at(i, m);
     }
+    if (!passes(w, m)) {
+      failure = i;
+      break;
+    }
+  }
+  // Keys only read ids, so they are safe to index before the fields are checked; errors are
+  // still reported for the first manifold in input order that breaks any rule (a manifold
+  // that breaks a rule and repeats a key is named for the rule). A pass that stopped at a
+  // broken manifold compared the keys up to it: a repeat after it is not reported, the
+  // broken one is, and the index it leaves is scratch.
+  const std::size_t repeat = next.index_step(manifolds, previous, unchanged);
+  if (failure != kNone && failure <= repeat) describe_failure(call, w, manifolds[failure], failure);
+  if (repeat != ContactCache::kNoRepeat) {
+    reject(call, "contacts[" + std::to_string(repeat) + "].key",
+           std::to_string(manifolds[repeat].key),
+           "another manifold of this step has the same body pair and key");
   }
 }
 
