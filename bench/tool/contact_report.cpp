@@ -90,10 +90,9 @@ void print_contact_stage_lines(const ContactSamples& s, double step_ms) {
   }
   if (s.steps > 0) {
     const double check = median(s.check_ms);
-    std::printf(
-        "  %-22s %8.3f  %5.1f %%  (softstep: every field checked and the keys indexed "
-        "before anything changes; serial)\n",
-        "contact checks", check, step_ms > 0 ? 100.0 * check / step_ms : 0.0);
+    std::printf("  %-22s %8.3f  %5.1f %%  (softstep: every field checked and the keys indexed "
+                "before anything changes; serial)\n",
+                "contact checks", check, step_ms > 0 ? 100.0 * check / step_ms : 0.0);
   }
   if (!s.collision_ms.empty()) {
     std::printf("  %-22s %8.3f  (the scene's narrow phase before each step, the user's part: "

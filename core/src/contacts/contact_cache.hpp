@@ -3,12 +3,13 @@
 // a ContactKeyIndex from their keys to their positions. Both keep their memory between steps.
 #pragma once
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "contacts/contact_key_index.hpp"
 #include "softstep/contacts.hpp"
@@ -85,7 +86,8 @@ class ContactCache {
     return position < entries_.size() && entries_[position].key == contact_pair_key(m);
   }
   // Starts loading the entry at this position (when there is one) ahead of same_key_at: the
-  // entries are a few cache lines apart, too far for the hardware to guess.
+  // entries are 232 bytes apart, and each comparison reads one line of them. (Measured only
+  // together with folding the comparison into the checks' pass: 0.90 -> 0.53 ms.)
   void prefetch_key(std::size_t position) const {
     if (position < entries_.size()) __builtin_prefetch(&entries_[position].key);
   }

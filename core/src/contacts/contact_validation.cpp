@@ -1,6 +1,5 @@
 #include "contacts/contact_validation.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
