@@ -291,6 +291,55 @@ TEST(Validation, SetterRejections) {
       "body", "static");
 }
 
+// The solver holds the inverse inertia in float: a tensor whose principal moments lie more than
+// 1e6 apart is refused, singular ones whose smallest computed eigenvalue is rounding noise
+// among them, in both calls that take a tensor; one just inside is taken and stays finite.
+TEST(Validation, InertiaTooIllConditionedForFloatIsRejected) {
+  const double a = 31.764705882352938;
+  Eigen::Matrix3d singular;  // (1, -1, 0) is in its null space; computed smallest: ~3e-5
+  singular << a, a, a, a, a, a, a, a, 1e12;
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  const auto rotated = [&](double ratio) {
+    return Eigen::Matrix3d(rotation * Eigen::Vector3d(1.0, ratio, ratio).asDiagonal() *
+                           rotation.transpose());
+  };
+  for (const Eigen::Matrix3d& inertia : {singular, rotated(2e6)}) {
+    expect_rejected(
+        [&](Fixture& f) {
+          BodyDef d = dynamic_body();
+          d.inertia = inertia;
+          f.world.create_body(d);
+        },
+        "BodyDef.inertia", "more than 1000000 apart");
+    expect_rejected([&](Fixture& f) { f.world.set_mass_properties(f.a, 1.0, inertia); },
+                    "inertia", "more than 1000000 apart");
+  }
+  // A needle's diagonal tensor is exact, but turned to the world it is a full one in float.
+  expect_rejected(
+      [](Fixture& f) {
+        BodyDef d = dynamic_body();
+        d.inertia = Eigen::Vector3d(1e-7, 1.0, 1.0).asDiagonal();
+        f.world.create_body(d);
+      },
+      "BodyDef.inertia", "1e-07");
+
+  Fixture f = make_world();
+  BodyDef d = dynamic_body();
+  d.inertia = rotated(0.99e6);
+  d.angular_velocity = {3.0, -2.0, 1.0};
+  const BodyId needle = f.world.create_body(d);
+  BallJointDef j;
+  j.body_a = f.ground;
+  j.body_b = needle;
+  j.local_anchor_b = {30.0, 30.0, 30.0};
+  f.world.create_ball_joint(j);
+  for (int step = 0; step < 60; ++step) f.world.step(1.0 / 60.0);
+  const BodyState s = f.world.body(needle);
+  EXPECT_TRUE(s.position.allFinite() && s.linear_velocity.allFinite() &&
+              s.angular_velocity.allFinite());
+}
+
 TEST(Validation, StepAndSettingsRejections) {
   expect_rejected([](Fixture& f) { f.world.step(0.0); }, "dt", "0");
   expect_rejected([](Fixture& f) { f.world.step(-1.0 / 60.0); }, "dt", "-0.0166");
