@@ -222,6 +222,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           d.gravity_scale = value(in);
           d.linear_damping = in.ConsumeBool() ? 0.0 : value(in);
           bodies.push_back(world.create_body(d));
+          if (verbose()) {
+            std::fprintf(stderr, "body %u type %d m %.17g gravity_scale %g inertia",
+                         bodies.back().index, static_cast<int>(d.type), d.mass, d.gravity_scale);
+            for (int k = 0; k < 9; ++k) std::fprintf(stderr, " %.17g", d.inertia(k / 3, k % 3));
+            std::fprintf(stderr, "\n");
+          }
           break;
         }
         case 2:
@@ -273,7 +279,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           break;
         case 6: {
           const BodyId b = pick(in, bodies);
-          switch (in.ConsumeIntegralInRange<int>(0, 5)) {
+          const int change = in.ConsumeIntegralInRange<int>(0, 5);
+          switch (change) {
             case 0:
               world.set_position(b, vec(in));
               break;
@@ -294,6 +301,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
               world.set_mass_properties(b, value(in),
                                         softstep::solid_sphere_inertia(1.0, value(in)));
               break;
+          }
+          if (verbose()) {
+            static constexpr const char* kChanges[] = {"set_position", "set_orientation",
+                                                       "set_linear_velocity", "set_angular_velocity",
+                                                       "apply_impulse", "set_mass_properties"};
+            std::fprintf(stderr, "%s %u\n", kChanges[change], b.index);
           }
           break;
         }
