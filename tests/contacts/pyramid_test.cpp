@@ -24,7 +24,15 @@
 namespace softstep::test {
 namespace {
 
+// gcc defines __SANITIZE_ADDRESS__, clang answers __has_feature.
 #if defined(__SANITIZE_ADDRESS__)
+#define SOFTSTEP_TEST_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SOFTSTEP_TEST_UNDER_ASAN 1
+#endif
+#endif
+#ifdef SOFTSTEP_TEST_UNDER_ASAN
 constexpr bool kSanitized = true;
 #else
 constexpr bool kSanitized = false;

@@ -10,7 +10,10 @@
 //  - a DontAlign type from here, whose storage is plain malloc/free and whose layout is the
 //    same under any flags;
 //  - Eigen::SparseMatrix, whose storage is malloc and new[] on every build.
-// They convert implicitly to and from the ordinary Eigen types.
+// They convert implicitly to and from the ordinary Eigen types. The code Eigen inlines into both
+// sides must also agree: the CMake target softstep::softstep defines EIGEN_MAX_ALIGN_BYTES=16 and
+// EIGEN_MALLOC_ALREADY_ALIGNED=0 for the library and every program that links it (a program
+// built without CMake passes both itself; core/CMakeLists.txt says why).
 #pragma once
 
 #include <Eigen/Core>
