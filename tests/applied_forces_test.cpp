@@ -8,13 +8,14 @@
 #include <limits>
 
 #include "expect_invalid_argument.hpp"
+#include "frame_constants.hpp"
 #include "simd_widths.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 WorldSettings weightless(SimdWidth width = SimdWidth::Best) {
   WorldSettings s;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <numbers>
 
+#include "frame_constants.hpp"
 #include "scenes/chain_scene.hpp"
 #include "scenes/hard_cases.hpp"
 #include "softstep/softstep.hpp"
@@ -12,7 +13,7 @@
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 struct Anchored {
   World world;

@@ -5,13 +5,14 @@
 #include <numbers>
 #include <vector>
 
+#include "frame_constants.hpp"
 #include "softstep/analytic.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kG = 9.81;
+using test::kG;
 
 // Period from the times at which x changes sign going the same way, over several periods.
 double measure_period(World& world, BodyId bob, double dt, int steps) {

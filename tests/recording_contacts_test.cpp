@@ -13,12 +13,11 @@
 #include "recording_files.hpp"
 #include "softstep/recording.hpp"
 #include "softstep/scene_file.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep::test {
 namespace {
 
-const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);
-constexpr double kDt = 1.0 / 60.0;
 
 // Three stacks of four boxes on the ground, a bouncing ball (restitution), a ball rolling on
 // a conveyor (rolling resistance, tangent speed, a manifold key) and a fast-rolling wheel given
@@ -35,7 +34,7 @@ struct ContactScene {
       stacks.emplace_back();
       for (int i = 0; i < kBoxes; ++i)
         stacks.back().push_back(
-            add_box(world, {3.0 * k, 0.5 + i + 0.005 * i, 0.1 * k}, 5.0, kHalf));
+            add_box(world, {3.0 * k, 0.5 + i + 0.005 * i, 0.1 * k}, 5.0, kUnitCubeHalf));
     }
     BodyDef d;
     d.position = {-3.0, 1.5, 0.0};
@@ -59,9 +58,9 @@ struct ContactScene {
   std::vector<ContactManifold> contacts() const {
     std::vector<ContactManifold> m;
     for (const auto& stack : stacks) {
-      m.push_back(box_on_ground(world, ground, stack[0], kHalf, 0.0, 0.5));
+      m.push_back(box_on_ground(world, ground, stack[0], kUnitCubeHalf, 0.0, 0.5));
       for (std::size_t i = 1; i < stack.size(); ++i)
-        m.push_back(box_on_box(world, stack[i - 1], stack[i], kHalf));
+        m.push_back(box_on_box(world, stack[i - 1], stack[i], kUnitCubeHalf));
     }
     ContactManifold b = sphere_on_ground(world, ground, ball, 0.25);
     b.restitution = 0.7;
@@ -146,13 +145,13 @@ TEST(RecordingContacts, DestroyingABodyDropsItsCacheEntriesAtOnce) {
   const auto after_destroying = [](bool touched) {
     World world;
     const BodyId ground = add_ground(world);
-    const BodyId kept = add_box(world, {0.0, 0.5, 0.0}, 5.0, kHalf);
-    const BodyId lower = add_box(world, {5.0, 0.5, 0.0}, 5.0, kHalf);
-    const BodyId upper = add_box(world, {5.0, 1.5, 0.0}, 5.0, kHalf);
-    std::vector<ContactManifold> contacts{box_on_ground(world, ground, kept, kHalf, 0.0, 0.5)};
+    const BodyId kept = add_box(world, {0.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
+    const BodyId lower = add_box(world, {5.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
+    const BodyId upper = add_box(world, {5.0, 1.5, 0.0}, 5.0, kUnitCubeHalf);
+    std::vector<ContactManifold> contacts{box_on_ground(world, ground, kept, kUnitCubeHalf, 0.0, 0.5)};
     if (touched) {
-      contacts.push_back(box_on_ground(world, ground, lower, kHalf, 0.0, 0.5));
-      contacts.push_back(box_on_box(world, lower, upper, kHalf));
+      contacts.push_back(box_on_ground(world, ground, lower, kUnitCubeHalf, 0.0, 0.5));
+      contacts.push_back(box_on_box(world, lower, upper, kUnitCubeHalf));
     }
     world.step(kDt, contacts);
     world.destroy_body(upper);

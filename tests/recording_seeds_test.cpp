@@ -15,6 +15,7 @@
 #include <fstream>
 #include <functional>
 
+#include "frame_constants.hpp"
 #include "recording_files.hpp"
 #include "scenes/chain_scene.hpp"
 #include "softstep/recording.hpp"
@@ -22,8 +23,6 @@
 
 namespace softstep::test {
 namespace {
-
-constexpr double kDt = 1.0 / 60.0;
 
 // The recording of `calls` made on `world` (recording starts before them).
 std::string recording_of(World& world, const std::function<void(World&)>& calls) {

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <vector>
 
+#include "frame_constants.hpp"
 #include "scenes/chain_scene.hpp"
 #include "softstep/analytic.hpp"
 #include "softstep/softstep.hpp"
@@ -25,7 +26,7 @@ WorldSettings single_solve_settings() {
   return s;
 }
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 // A body on a soft ball joint anchored at its centre of mass sees m_eff = m on every axis:
 // the exact solve must be the talk's implicit-Euler spring (2:3:1).

@@ -5,12 +5,13 @@
 
 #include <functional>
 
+#include "frame_constants.hpp"
 #include "scenes/chain_scene.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 WorldSettings resting_settings() {
   WorldSettings s;

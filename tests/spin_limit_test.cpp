@@ -7,12 +7,13 @@
 #include <limits>
 #include <numbers>
 
+#include "frame_constants.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 // |angular velocity| of a free body spun at `spin` rad/s after one step.
 double spin_after_step(const WorldSettings& settings, double spin) {

@@ -14,11 +14,12 @@
 #include "simd_widths.hpp"
 #include "softstep/reference.hpp"
 #include "softstep/softstep.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 double relative(const Eigen::VectorXd& got, const Eigen::VectorXd& want) {
   return (got - want).norm() / want.norm();

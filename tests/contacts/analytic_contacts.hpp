@@ -12,6 +12,9 @@
 
 namespace softstep::test {
 
+// Half extents of the 1 m cubes most contact tests stack.
+inline const Eigen::Vector3d kUnitCubeHalf(0.5, 0.5, 0.5);
+
 // Settings for tests that watch the solver, not the sleep test.
 inline WorldSettings settings_without_sleep() {
   WorldSettings s;

@@ -9,11 +9,12 @@
 
 #include "scenes/chain_scene.hpp"
 #include "scenes/suspension_bridge.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 // The cart's centre goes from 3 m before the left tower to past the right one. At the motors'
 // 2 m/s the 21 m between the towers take 10.5 s; the deck's slopes (up to about 30 degrees

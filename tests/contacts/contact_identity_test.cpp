@@ -12,8 +12,6 @@
 namespace softstep::test {
 namespace {
 
-const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);
-
 struct Outcome {
   std::uint64_t hash;
   std::vector<double> readings;
@@ -31,8 +29,8 @@ Outcome run(SimdWidth width, int threads) {
   std::vector<std::vector<BodyId>> stacks(12);
   for (std::size_t k = 0; k < stacks.size(); ++k) {
     for (int i = 0; i < 6; ++i) {
-      stacks[k].push_back(
-          add_box(world, {3.0 * double(k), 0.5 + i + 0.01 * i, 0.2 * double(k % 3)}, 5.0, kHalf));
+      stacks[k].push_back(add_box(world, {3.0 * double(k), 0.5 + i + 0.01 * i, 0.2 * double(k % 3)},
+                                  5.0, kUnitCubeHalf));
     }
   }
   BodyDef d;
@@ -63,10 +61,10 @@ Outcome run(SimdWidth width, int threads) {
   for (int step = 0; step < 90; ++step) {
     std::vector<ContactManifold> contacts;
     for (std::size_t k = 0; k < stacks.size(); ++k) {
-      contacts.push_back(
-          box_on_ground(world, ground, stacks[k][0], kHalf, 0.0, 0.2 + 0.1 * double(k % 4)));
+      contacts.push_back(box_on_ground(world, ground, stacks[k][0], kUnitCubeHalf, 0.0,
+                                       0.2 + 0.1 * double(k % 4)));
       for (std::size_t i = 1; i < stacks[k].size(); ++i) {
-        contacts.push_back(box_on_box(world, stacks[k][i - 1], stacks[k][i], kHalf));
+        contacts.push_back(box_on_box(world, stacks[k][i - 1], stacks[k][i], kUnitCubeHalf));
       }
     }
     ContactManifold b = sphere_on_ground(world, ground, ball, 0.25);

@@ -8,12 +8,10 @@
 #include <numbers>
 
 #include "contacts/analytic_contacts.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep::test {
 namespace {
-
-const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);  // 1 m cubes
-constexpr double kDt = 1.0 / 60.0;
 
 // At rest every normal row of the box has v = 0 and a constant impulse P, so its soft update
 //   dP = -mass_scale m_eff (bias_rate s) - impulse_scale P = 0
@@ -25,11 +23,11 @@ constexpr double kDt = 1.0 / 60.0;
 TEST(ContactPhysics, BoxRestsAtThePenetrationOfTheContactSpringAndDoesNotDrift) {
   World world(settings_without_sleep());
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.3, 0.5, -0.2}, 100.0, kHalf);
+  const BodyId box = add_box(world, {0.3, 0.5, -0.2}, 100.0, kUnitCubeHalf);
   const double omega = 2.0 * std::numbers::pi * world.settings().contact.hertz;
   const double expected = 9.81 / (omega * omega);
   const auto step = [&] {
-    const ContactManifold m = box_on_ground(world, ground, box, kHalf);
+    const ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf);
     world.step(kDt, {&m, 1});
   };
   for (int i = 0; i < 120; ++i) step();  // 2 s to settle
@@ -65,10 +63,10 @@ SlopeRun slide(double angle, double friction) {
   s.gravity = 9.81 * Eigen::Vector3d(std::sin(angle), -std::cos(angle), 0.0);
   World world(s);
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 10.0, kHalf);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 10.0, kUnitCubeHalf);
   SlopeRun run{};
   for (int i = 1; i <= 120; ++i) {
-    const ContactManifold m = box_on_ground(world, ground, box, kHalf, 0.0, friction);
+    const ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf, 0.0, friction);
     world.step(kDt, {&m, 1});
     if (i == 60) {
       run.x_at_1s = world.body(box).position.x();
@@ -141,8 +139,8 @@ TEST(ContactPhysics, NoRestitutionPassWithoutRestitution) {
   World world(s);
   world.set_profiling(true);
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 1.0, kHalf);
-  const ContactManifold m = box_on_ground(world, ground, box, kHalf);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+  const ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf);
   world.step(kDt, {&m, 1});
   for (const StageEvent& ev : world.last_step_profile().thread_events.at(0)) {
     EXPECT_NE(ev.stage, Stage::Restitution);
@@ -154,10 +152,10 @@ TEST(ContactPhysics, NoRestitutionPassWithoutRestitution) {
 TEST(ContactPhysics, TangentSpeedCarriesTheBoxAtTheBeltSpeed) {
   World world(settings_without_sleep());
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 5.0, kHalf);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
   const Eigen::Vector2d belt(0.5, -1.25);
   for (int i = 0; i < 120; ++i) {
-    ContactManifold m = box_on_ground(world, ground, box, kHalf, 0.0, 0.8);
+    ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf, 0.0, 0.8);
     m.tangent_speed = belt;
     world.step(kDt, {&m, 1});
   }
@@ -199,7 +197,7 @@ TEST(ContactPhysics, RollingResistanceDeceleratesARollingBall) {
 TEST(ContactPhysics, PlanShowsContactStagesOnlyWithContacts) {
   World world(settings_without_sleep());
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 1.0, kHalf);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
   const auto has = [&](PlanStage s) {
     const auto& st = world.step_plan().stages;
     return std::find(st.begin(), st.end(), s) != st.end();
@@ -207,7 +205,7 @@ TEST(ContactPhysics, PlanShowsContactStagesOnlyWithContacts) {
   world.step(kDt);
   EXPECT_FALSE(has(PlanStage::PrepareContacts));
   EXPECT_FALSE(has(PlanStage::Solve));  // no joints, no contacts: nothing to solve
-  ContactManifold m = box_on_ground(world, ground, box, kHalf, 0.0, 0.0);
+  ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf, 0.0, 0.0);
   world.step(kDt, {&m, 1});
   EXPECT_TRUE(has(PlanStage::PrepareContacts));
   EXPECT_TRUE(has(PlanStage::Solve));
@@ -216,7 +214,7 @@ TEST(ContactPhysics, PlanShowsContactStagesOnlyWithContacts) {
   EXPECT_FALSE(world.step_plan().contact_friction);
   EXPECT_EQ(world.step_plan().contact_manifolds, 1u);
   EXPECT_EQ(world.step_plan().contact_points, 4u);
-  m = box_on_ground(world, ground, box, kHalf);
+  m = box_on_ground(world, ground, box, kUnitCubeHalf);
   m.restitution = 0.5;
   world.step(kDt, {&m, 1});
   EXPECT_TRUE(has(PlanStage::Restitution));
@@ -237,13 +235,14 @@ TEST(ContactPhysics, PlanKeepsTheStepsContactsWhenTheStepPutsABodyToSleep) {
   s.time_to_sleep = 0.25;
   World world(s);
   const BodyId ground = add_ground(world);
-  const BodyId resting = add_box(world, {0.0, 0.5, 0.0}, 1.0, kHalf);
-  const BodyId sliding = add_box(world, {3.0, 0.5, 0.0}, 1.0, kHalf);
+  const BodyId resting = add_box(world, {0.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+  const BodyId sliding = add_box(world, {3.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
   world.set_linear_velocity(sliding, {1.0, 0.0, 0.0});
   bool fell_asleep = false;
   for (int i = 0; i < 120 && !fell_asleep; ++i) {
-    std::array<ContactManifold, 2> m{box_on_ground(world, ground, resting, kHalf),
-                                     box_on_ground(world, ground, sliding, kHalf, 0.0, 0.0)};
+    std::array<ContactManifold, 2> m{
+        box_on_ground(world, ground, resting, kUnitCubeHalf),
+        box_on_ground(world, ground, sliding, kUnitCubeHalf, 0.0, 0.0)};
     const std::uint64_t builds = world.step_plan().builds;
     world.step(kDt, m);
     fell_asleep = !world.is_awake(resting);
@@ -265,9 +264,9 @@ struct Stack {
   std::vector<BodyId> boxes;
   std::vector<ContactManifold> contacts() const {
     std::vector<ContactManifold> out;
-    out.push_back(box_on_ground(world, ground, boxes[0], kHalf));
+    out.push_back(box_on_ground(world, ground, boxes[0], kUnitCubeHalf));
     for (std::size_t i = 1; i < boxes.size(); ++i) {
-      out.push_back(box_on_box(world, boxes[i - 1], boxes[i], kHalf));
+      out.push_back(box_on_box(world, boxes[i - 1], boxes[i], kUnitCubeHalf));
     }
     return out;
   }
@@ -281,7 +280,7 @@ Stack make_stack(int count, const WorldSettings& s) {
   Stack st{World(s), {}, {}};
   st.ground = add_ground(st.world);
   for (int i = 0; i < count; ++i) {
-    st.boxes.push_back(add_box(st.world, {0.0, 0.5 + i, 0.0}, 10.0, kHalf));
+    st.boxes.push_back(add_box(st.world, {0.0, 0.5 + i, 0.0}, 10.0, kUnitCubeHalf));
   }
   return st;
 }

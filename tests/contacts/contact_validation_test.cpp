@@ -12,7 +12,6 @@
 namespace softstep::test {
 namespace {
 
-const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);
 
 struct Scene {
   World world;
@@ -23,9 +22,9 @@ struct Scene {
 Scene make_scene() {
   Scene s{World(), {}, {}, {}, {}};
   s.ground = add_ground(s.world);
-  s.box = add_box(s.world, {0.0, 0.5, 0.0}, 1.0, kHalf);
-  s.other = add_box(s.world, {3.0, 0.5, 0.0}, 1.0, kHalf);
-  s.valid = box_on_ground(s.world, s.ground, s.box, kHalf);
+  s.box = add_box(s.world, {0.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+  s.other = add_box(s.world, {3.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+  s.valid = box_on_ground(s.world, s.ground, s.box, kUnitCubeHalf);
   s.world.step(1.0 / 60.0, {&s.valid, 1});  // some warm-start state and readings to keep
   return s;
 }
@@ -33,7 +32,7 @@ Scene make_scene() {
 void expect_rejected(const std::function<void(ContactManifold&, Scene&)>& spoil,
                      const std::string& field, const std::string& value) {
   Scene s = make_scene();
-  std::vector<ContactManifold> contacts{box_on_ground(s.world, s.ground, s.box, kHalf)};
+  std::vector<ContactManifold> contacts{box_on_ground(s.world, s.ground, s.box, kUnitCubeHalf)};
   spoil(contacts[0], s);
   const std::uint64_t before = s.world.state_hash();
   const std::vector<ContactReading> readings = s.world.contact_readings();
@@ -55,7 +54,7 @@ TEST(ContactValidation, UnknownAndDestroyedBodies) {
                   "contacts[0].body_a", "BodyId{77");
   expect_rejected(
       [](ContactManifold& m, Scene& s) {
-        const BodyId gone = add_box(s.world, {9.0, 0.5, 0.0}, 1.0, kHalf);
+        const BodyId gone = add_box(s.world, {9.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
         s.world.destroy_body(gone);
         m.body_b = gone;
       },
@@ -139,7 +138,7 @@ struct ManyBoxes {
     ground = add_ground(world);
     for (int i = 0; i < kBoxes; ++i) {
       // Masses that differ, so that each manifold's impulses are its own.
-      boxes.push_back(add_box(world, {2.0 * i, 0.5, 0.0}, 1.0 + i % 7, kHalf));
+      boxes.push_back(add_box(world, {2.0 * i, 0.5, 0.0}, 1.0 + i % 7, kUnitCubeHalf));
     }
   }
   // Feature ids of their own per box, so that a manifold matched with another box's entry
@@ -147,7 +146,7 @@ struct ManyBoxes {
   std::vector<ContactManifold> contacts() const {
     std::vector<ContactManifold> c;
     for (std::uint32_t i = 0; i < boxes.size(); ++i) {
-      c.push_back(box_on_ground(world, ground, boxes[i], kHalf));
+      c.push_back(box_on_ground(world, ground, boxes[i], kUnitCubeHalf));
       for (int k = 0; k < c.back().point_count; ++k)
         c.back().points[static_cast<std::size_t>(k)].feature_id =
             4 * i + static_cast<std::uint32_t>(k);

@@ -9,12 +9,11 @@
 #include <vector>
 
 #include "contacts/analytic_contacts.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep::test {
 namespace {
 
-const Eigen::Vector3d kHalf(0.5, 0.5, 0.5);  // 1 m cubes
-constexpr double kDt = 1.0 / 60.0;
 
 // The same contact seen from the other body: A and B swap, the normal turns, anchors swap.
 ContactManifold swapped(const ContactManifold& m) {
@@ -46,12 +45,12 @@ TEST(ContactWarmStart, SwappedBodyPairIsMatchedWithItsImpulsesTurned) {
   s.gravity = 9.81 * Eigen::Vector3d(std::sin(angle), -std::cos(angle), 0.0);
   World world(s);
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 10.0, kHalf);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 10.0, kUnitCubeHalf);
   const double h = kDt / s.substeps;
   const double carried = 10.0 * 9.81 * std::sin(angle) * h;
   double x_at_1s = 0.0;
   for (int i = 1; i <= 120; ++i) {
-    const ContactManifold m = box_on_ground(world, ground, box, kHalf, 0.0, 0.6);
+    const ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf, 0.0, 0.6);
     const bool swap = i > 60 && i % 2 == 0;
     const ContactManifold given = swap ? swapped(m) : m;
     world.step(kDt, {&given, 1});
@@ -75,9 +74,9 @@ struct Column {
   BodyId ground;
   std::vector<BodyId> boxes;
   std::vector<ContactManifold> contacts() const {
-    std::vector<ContactManifold> out{box_on_ground(world, ground, boxes[0], kHalf)};
+    std::vector<ContactManifold> out{box_on_ground(world, ground, boxes[0], kUnitCubeHalf)};
     for (std::size_t i = 1; i < boxes.size(); ++i) {
-      out.push_back(box_on_box(world, boxes[i - 1], boxes[i], kHalf));
+      out.push_back(box_on_box(world, boxes[i - 1], boxes[i], kUnitCubeHalf));
     }
     return out;
   }
@@ -86,7 +85,7 @@ struct Column {
 void build(Column& c, int count, Eigen::Vector3d at) {
   c.ground = add_ground(c.world);
   for (int i = 0; i < count; ++i) {
-    c.boxes.push_back(add_box(c.world, at + Eigen::Vector3d(0.0, 0.5 + i, 0.0), 10.0, kHalf));
+    c.boxes.push_back(add_box(c.world, at + Eigen::Vector3d(0.0, 0.5 + i, 0.0), 10.0, kUnitCubeHalf));
   }
 }
 
@@ -136,14 +135,14 @@ TEST(ContactWarmStart, DestroyingABodyKeepsTheOthersMatched) {
   build(first, 4, Eigen::Vector3d::Zero());
   second.ground = first.ground;
   for (int i = 0; i < 4; ++i) {
-    second.boxes.push_back(add_box(first.world, Eigen::Vector3d(3.0, 0.5 + i, 0.0), 10.0, kHalf));
+    second.boxes.push_back(add_box(first.world, Eigen::Vector3d(3.0, 0.5 + i, 0.0), 10.0, kUnitCubeHalf));
   }
   World& world = first.world;
   const auto both = [&] {
     std::vector<ContactManifold> all = first.contacts();
-    all.push_back(box_on_ground(world, second.ground, second.boxes[0], kHalf));
+    all.push_back(box_on_ground(world, second.ground, second.boxes[0], kUnitCubeHalf));
     for (std::size_t i = 1; i < second.boxes.size(); ++i) {
-      all.push_back(box_on_box(world, second.boxes[i - 1], second.boxes[i], kHalf));
+      all.push_back(box_on_box(world, second.boxes[i - 1], second.boxes[i], kUnitCubeHalf));
     }
     return all;
   };
@@ -185,9 +184,9 @@ TEST(ContactWarmStart, WithWarmStartOffEverySubStepStartsFromZero) {
   s.warm_start = false;
   World world(s);
   const BodyId ground = add_ground(world);
-  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 100.0, kHalf);
+  const BodyId box = add_box(world, {0.0, 0.5, 0.0}, 100.0, kUnitCubeHalf);
   for (int i = 0; i < 120; ++i) {
-    const ContactManifold m = box_on_ground(world, ground, box, kHalf);
+    const ContactManifold m = box_on_ground(world, ground, box, kUnitCubeHalf);
     world.step(kDt, {&m, 1});
   }
   const ContactReading& r = world.contact_readings().at(0);

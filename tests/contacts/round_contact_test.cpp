@@ -12,9 +12,8 @@
 namespace softstep::test {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
-constexpr double kRadius = 0.3;  // m
-constexpr double kSpin = 30.0;   // rad/s: rolls at 9 m/s, turning 0.5 rad per step
+constexpr double kBallRadius = 0.3;  // m
+constexpr double kSpin = 30.0;       // rad/s: rolls at 9 m/s, turning 0.5 rad per step
 
 // The lowest height the ball's centre reaches from 1 s to 3 s of rolling (after the drop
 // from its release just touching has settled).
@@ -25,22 +24,22 @@ double lowest_centre(bool round) {
   World world(s);
   const BodyId ground = add_ground(world);
   BodyDef d;
-  d.position = {0.0, kRadius, 0.0};
+  d.position = {0.0, kBallRadius, 0.0};
   d.mass = 10.0;
-  d.inertia = solid_sphere_inertia(d.mass, kRadius);
-  d.linear_velocity = {kSpin * kRadius, 0.0, 0.0};
+  d.inertia = solid_sphere_inertia(d.mass, kBallRadius);
+  d.linear_velocity = {kSpin * kBallRadius, 0.0, 0.0};
   d.angular_velocity = {0.0, 0.0, -kSpin};  // rolling along +x without slip
   const BodyId ball = world.create_body(d);
-  double lowest = kRadius;
+  double lowest = kBallRadius;
   for (int i = 0; i < 180; ++i) {
-    ContactManifold m = round ? round_sphere_on_ground(world, ground, ball, kRadius)
-                              : sphere_on_ground(world, ground, ball, kRadius);
+    ContactManifold m = round ? round_sphere_on_ground(world, ground, ball, kBallRadius)
+                              : sphere_on_ground(world, ground, ball, kBallRadius);
     m.friction = 0.6;
     world.step(kDt, {&m, 1});
     if (i >= 60) lowest = std::min(lowest, world.body(ball).position.y());
   }
   // Still rolling without slip at its start speed: friction had nothing to do.
-  EXPECT_NEAR(world.body(ball).linear_velocity.x(), kSpin * kRadius, 1e-3);
+  EXPECT_NEAR(world.body(ball).linear_velocity.x(), kSpin * kBallRadius, 1e-3);
   return lowest;
 }
 
@@ -55,7 +54,7 @@ double lowest_centre(bool round) {
 TEST(RoundContacts, ARollingSphereGivenRoundRidesAtTheRestingHeight) {
   const double omega_c = 2.0 * std::numbers::pi * WorldSettings{}.contact.hertz;
   const double compression = 9.81 / (omega_c * omega_c);
-  EXPECT_NEAR(lowest_centre(true), kRadius - compression, 1e-5);
+  EXPECT_NEAR(lowest_centre(true), kBallRadius - compression, 1e-5);
 }
 
 // Given as its lowest point, the anchor turns with the ball: by k sub-steps of h into a step
@@ -63,8 +62,8 @@ TEST(RoundContacts, ARollingSphereGivenRoundRidesAtTheRestingHeight) {
 // the solver reads as a gap it lets the ball fall into. The ball sinks by a sizeable part of
 // that rise, never by more than the whole step's rise plus the contact spring's compression.
 TEST(RoundContacts, ARollingSphereGivenByItsSurfacePointSinksByTheAnchorsRise) {
-  const double rise = kRadius * (1.0 - std::cos(kSpin * kDt));
-  const double sink = kRadius - lowest_centre(false);
+  const double rise = kBallRadius * (1.0 - std::cos(kSpin * kDt));
+  const double sink = kBallRadius - lowest_centre(false);
   EXPECT_GT(sink, 0.25 * rise);
   EXPECT_LT(sink, rise + 1e-3);
 }
@@ -83,6 +82,7 @@ TEST(RoundContacts, TheReadmeExampleRestsABallOnItsContactSpring) {
   for (int i = 0; i < 120; ++i) {
     const Eigen::Vector3d centre = world.body(ball).position;
     const double x = centre.x(), z = centre.z(), centre_height = centre.y();
+#include "frame_constants.hpp"
 #include "readme_examples/round_example.inc"
     world.step(kDt, {&m, 1});
   }

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "contacts/analytic_contacts.hpp"
+#include "frame_constants.hpp"
 #include "scenes/chain_scene.hpp"
 
 namespace softstep::test {
@@ -32,7 +33,6 @@ constexpr double kSpacing = 0.25;
 constexpr double kMass = 1.0;
 constexpr int kHanging = 8;
 constexpr int kLying = 12;
-constexpr double kDt = 1.0 / 60.0;
 constexpr double kContactReach = 0.05;  // m: a ball this close to the ground gets a contact
 
 struct LyingChain {

@@ -9,11 +9,12 @@
 #include <vector>
 
 #include "scenes/vehicle_scene.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 // The bounce and the ride height are watched through to rest: nothing may fall asleep.
 WorldSettings awake() {

@@ -269,12 +269,12 @@ TEST(AbsoluteSpring, JointReadingGivesTheAnalyticEffectiveMass) {
 
 // Bad k, c are rejected naming the field and the value, and so are absolute units on the
 // joints whose springs do not take them; the world is left as it was.
-struct Fixture {
+struct SpringFixture {
   World world;
   BodyId ground, box;
 };
-Fixture make_fixture() {
-  Fixture f{World(), {}, {}};
+SpringFixture make_fixture() {
+  SpringFixture f{World(), {}, {}};
   f.ground = test::static_body(f.world);
   f.box = test::dynamic_body(f.world, {0.0, 1.0, 0.0}, 1.0, Eigen::Matrix3d::Identity() * 0.1);
   f.world.step(kDt);
@@ -283,7 +283,7 @@ Fixture make_fixture() {
 
 TEST(AbsoluteSpring, BadValuesAndJointsThatTakeNoAbsoluteUnitsAreRejected) {
   const auto slider_with = [](Spring s) {
-    return [s](Fixture& f) {
+    return [s](SpringFixture& f) {
       auto d = scenes::joint_at<PrismaticJointDef>(f.world, f.ground, f.box, {0.0, 1.0, 0.0},
                                                    Eigen::Vector3d::UnitX());
       d.spring.spring = s;
@@ -291,21 +291,21 @@ TEST(AbsoluteSpring, BadValuesAndJointsThatTakeNoAbsoluteUnitsAreRejected) {
     };
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  test::expect_rejected_on<Fixture>(make_fixture, slider_with(Spring::absolute(-1.0, 0.0)),
+  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(-1.0, 0.0)),
                                     "PrismaticJointDef.spring.spring.absolute_stiffness", "-1");
-  test::expect_rejected_on<Fixture>(make_fixture, slider_with(Spring::absolute(1.0, nan)),
+  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(1.0, nan)),
                                     "PrismaticJointDef.spring.spring.absolute_damping", "nan");
   Spring stray = Spring::soft(2.0, 0.1);
   stray.absolute_stiffness = 5.0;  // a relative spring with an absolute field set
-  test::expect_rejected_on<Fixture>(make_fixture, slider_with(stray),
+  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(stray),
                                     "PrismaticJointDef.spring.spring.absolute_stiffness", "5");
   Spring mixed = Spring::absolute(5.0, 1.0);
   mixed.hertz = 2.0;
-  test::expect_rejected_on<Fixture>(make_fixture, slider_with(mixed),
+  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(mixed),
                                     "PrismaticJointDef.spring.spring.hertz", "2");
-  test::expect_rejected_on<Fixture>(
+  test::expect_rejected_on<SpringFixture>(
       make_fixture,
-      [](Fixture& f) {
+      [](SpringFixture& f) {
         BallJointDef d;
         d.body_a = f.ground;
         d.body_b = f.box;
@@ -313,9 +313,9 @@ TEST(AbsoluteSpring, BadValuesAndJointsThatTakeNoAbsoluteUnitsAreRejected) {
         f.world.create_ball_joint(d);
       },
       "BallJointDef.spring.units", "Absolute");
-  test::expect_rejected_on<Fixture>(
+  test::expect_rejected_on<SpringFixture>(
       make_fixture,
-      [](Fixture& f) {
+      [](SpringFixture& f) {
         WeldJointDef d = scenes::joint_at<WeldJointDef>(f.world, f.ground, f.box, {0.0, 1.0, 0.0},
                                                         Eigen::Vector3d::UnitX());
         d.angular = Spring::absolute(10.0, 1.0);

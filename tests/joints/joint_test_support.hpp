@@ -8,11 +8,10 @@
 #include <numbers>
 #include <vector>
 
+#include "frame_constants.hpp"
 #include "softstep/softstep.hpp"
 
 namespace softstep::test {
-
-constexpr double kDt = 1.0 / 60.0;
 
 // The same inertia turned by `rotation` in the body frame: products of inertia, so the
 // body's principal axes are not the joint's (a body hinged off its principal axes needs the

@@ -17,15 +17,15 @@ namespace {
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct Fixture {
+struct JointFixture {
   World world;
   BodyId ground, a, b, gone;
   JointId revolute, prismatic, weld, swing_twist, wheel, motor;
 };
 
 // A world with one joint of each type, stepped so that impulses and poses are non-trivial.
-Fixture make_world() {
-  Fixture f{World(), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
+JointFixture make_world() {
+  JointFixture f{World(), {}, {}, {}, {}, {}, {}, {}, {}, {}, {}};
   f.ground = test::static_body(f.world);
   f.a = test::dynamic_body(f.world, {1, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
   f.b = test::dynamic_body(f.world, {2, 0, 0}, 1.0, Eigen::Matrix3d::Identity() * 0.01);
@@ -90,19 +90,19 @@ Fixture make_world() {
   return f;
 }
 
-void expect_rejected(const std::function<void(Fixture&)>& call, const std::string& field,
+void expect_rejected(const std::function<void(JointFixture&)>& call, const std::string& field,
                      const std::string& value) {
-  test::expect_rejected_on<Fixture>(make_world, call, field, value);
+  test::expect_rejected_on<JointFixture>(make_world, call, field, value);
 }
 
 // Every check is made twice: on create_joint with a new joint between a and b, and on
 // set_joint of the fixture's joint of that type. Both must reject with the same field.
 template <class Def>
-void expect_def_rejected(const std::function<void(Fixture&, Def&)>& mutate,
-                         JointId Fixture::*existing, const std::string& field,
+void expect_def_rejected(const std::function<void(JointFixture&, Def&)>& mutate,
+                         JointId JointFixture::*existing, const std::string& field,
                          const std::string& value) {
   expect_rejected(
-      [&](Fixture& f) {
+      [&](JointFixture& f) {
         Def d = f.world.joint_def<Def>(f.*existing);
         d.body_a = f.a;
         d.body_b = f.b;
@@ -111,7 +111,7 @@ void expect_def_rejected(const std::function<void(Fixture&, Def&)>& mutate,
       },
       field, value);
   expect_rejected(
-      [&](Fixture& f) {
+      [&](JointFixture& f) {
         Def d = f.world.joint_def<Def>(f.*existing);
         mutate(f, d);
         f.world.set_joint(f.*existing, d);
@@ -121,29 +121,29 @@ void expect_def_rejected(const std::function<void(Fixture&, Def&)>& mutate,
 
 // The checks every frame-based joint shares: bodies, anchors, axes, references.
 template <class Def>
-void expect_frame_rejections(const std::string& type, JointId Fixture::*existing) {
-  using Mutate = std::function<void(Fixture&, Def&)>;
+void expect_frame_rejections(const std::string& type, JointId JointFixture::*existing) {
+  using Mutate = std::function<void(JointFixture&, Def&)>;
   const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
     expect_def_rejected<Def>(m, existing, type + "." + field, value);
   };
-  check([](Fixture&, Def& d) { d.frame_a.local_axis.setZero(); }, "frame_a.local_axis", "0");
+  check([](JointFixture&, Def& d) { d.frame_a.local_axis.setZero(); }, "frame_a.local_axis", "0");
   check(
-      [](Fixture&, Def& d) {
+      [](JointFixture&, Def& d) {
         d.frame_b.local_axis = {0.0, kNan, 1.0};
       },
       "frame_b.local_axis", "nan");
   check(
-      [](Fixture&, Def& d) {
+      [](JointFixture&, Def& d) {
         d.frame_a.local_axis = {kInf, 0.0, 0.0};
       },
       "frame_a.local_axis", "inf");
-  check([](Fixture&, Def& d) { d.frame_b.local_reference = 2.0 * d.frame_b.local_axis; },
+  check([](JointFixture&, Def& d) { d.frame_b.local_reference = 2.0 * d.frame_b.local_axis; },
         "frame_b.local_reference", "parallel");
-  check([](Fixture&, Def& d) { d.frame_a.local_reference.setZero(); }, "frame_a.local_reference",
+  check([](JointFixture&, Def& d) { d.frame_a.local_reference.setZero(); }, "frame_a.local_reference",
         "0");
   // Creating: the same body twice, an unknown or destroyed body. set_joint: bodies changed.
   expect_rejected(
-      [existing](Fixture& f) {
+      [existing](JointFixture& f) {
         Def d = f.world.joint_def<Def>(f.*existing);
         d.body_a = f.b;
         d.body_b = f.b;
@@ -151,14 +151,14 @@ void expect_frame_rejections(const std::string& type, JointId Fixture::*existing
       },
       type + ".body_b", "same body");
   expect_rejected(
-      [existing](Fixture& f) {
+      [existing](JointFixture& f) {
         Def d = f.world.joint_def<Def>(f.*existing);
         d.body_a = f.gone;
         f.world.create_joint(d);
       },
       type + ".body_a", "BodyId{3");
   expect_rejected(
-      [existing](Fixture& f) {
+      [existing](JointFixture& f) {
         Def d = f.world.joint_def<Def>(f.*existing);
         d.body_b = BodyId{99, 0};
         f.world.create_joint(d);
@@ -169,16 +169,16 @@ void expect_frame_rejections(const std::string& type, JointId Fixture::*existing
 // A frame's anchor is named as the caller spells it ("RevoluteJointDef.frame_a.local_anchor"),
 // and set_joint with a body changed names that body and the value given.
 template <class Def>
-void expect_anchor_and_body_change_named(const std::string& type, JointId Fixture::*existing) {
-  using Mutate = std::function<void(Fixture&, Def&)>;
+void expect_anchor_and_body_change_named(const std::string& type, JointId JointFixture::*existing) {
+  using Mutate = std::function<void(JointFixture&, Def&)>;
   const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
     expect_def_rejected<Def>(m, existing, type + "." + field, value);
   };
-  check([](Fixture&, Def& d) { d.frame_a.local_anchor.y() = kNan; }, "frame_a.local_anchor", "nan");
-  check([](Fixture&, Def& d) { d.frame_b.local_anchor.z() = 2e9; }, "frame_b.local_anchor",
+  check([](JointFixture&, Def& d) { d.frame_a.local_anchor.y() = kNan; }, "frame_a.local_anchor", "nan");
+  check([](JointFixture&, Def& d) { d.frame_b.local_anchor.z() = 2e9; }, "frame_b.local_anchor",
         "2e+09");
   expect_rejected(
-      [existing](Fixture& f) {
+      [existing](JointFixture& f) {
         Def d = f.world.joint_def<Def>(f.*existing);
         d.body_b = d.body_b == f.a ? f.b : f.a;
         f.world.set_joint(f.*existing, d);
@@ -187,49 +187,49 @@ void expect_anchor_and_body_change_named(const std::string& type, JointId Fixtur
 }
 
 TEST(JointValidation, AnchorsAndChangedBodiesNamedAsTheCallerSpellsThem) {
-  expect_anchor_and_body_change_named<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute);
-  expect_anchor_and_body_change_named<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic);
-  expect_anchor_and_body_change_named<WeldJointDef>("WeldJointDef", &Fixture::weld);
+  expect_anchor_and_body_change_named<RevoluteJointDef>("RevoluteJointDef", &JointFixture::revolute);
+  expect_anchor_and_body_change_named<PrismaticJointDef>("PrismaticJointDef", &JointFixture::prismatic);
+  expect_anchor_and_body_change_named<WeldJointDef>("WeldJointDef", &JointFixture::weld);
   expect_anchor_and_body_change_named<SwingTwistJointDef>("SwingTwistJointDef",
-                                                          &Fixture::swing_twist);
-  expect_anchor_and_body_change_named<WheelJointDef>("WheelJointDef", &Fixture::wheel);
-  expect_anchor_and_body_change_named<MotorJointDef>("MotorJointDef", &Fixture::motor);
+                                                          &JointFixture::swing_twist);
+  expect_anchor_and_body_change_named<WheelJointDef>("WheelJointDef", &JointFixture::wheel);
+  expect_anchor_and_body_change_named<MotorJointDef>("MotorJointDef", &JointFixture::motor);
 }
 
 TEST(JointValidation, RevoluteFrames) {
-  expect_frame_rejections<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute);
+  expect_frame_rejections<RevoluteJointDef>("RevoluteJointDef", &JointFixture::revolute);
 }
 TEST(JointValidation, PrismaticFrames) {
-  expect_frame_rejections<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic);
+  expect_frame_rejections<PrismaticJointDef>("PrismaticJointDef", &JointFixture::prismatic);
 }
 TEST(JointValidation, WeldFrames) {
-  expect_frame_rejections<WeldJointDef>("WeldJointDef", &Fixture::weld);
+  expect_frame_rejections<WeldJointDef>("WeldJointDef", &JointFixture::weld);
 }
 TEST(JointValidation, SwingTwistFrames) {
-  expect_frame_rejections<SwingTwistJointDef>("SwingTwistJointDef", &Fixture::swing_twist);
+  expect_frame_rejections<SwingTwistJointDef>("SwingTwistJointDef", &JointFixture::swing_twist);
 }
 TEST(JointValidation, WheelFrames) {
-  expect_frame_rejections<WheelJointDef>("WheelJointDef", &Fixture::wheel);
+  expect_frame_rejections<WheelJointDef>("WheelJointDef", &JointFixture::wheel);
 }
 TEST(JointValidation, MotorFrames) {
-  expect_frame_rejections<MotorJointDef>("MotorJointDef", &Fixture::motor);
+  expect_frame_rejections<MotorJointDef>("MotorJointDef", &JointFixture::motor);
 }
 
 // Limits, motors and springs along the free axis (revolute and prismatic alike).
 template <class Def>
-void expect_axis_rejections(const std::string& type, JointId Fixture::*existing,
+void expect_axis_rejections(const std::string& type, JointId JointFixture::*existing,
                             const std::string& max_field) {
-  using Mutate = std::function<void(Fixture&, Def&)>;
+  using Mutate = std::function<void(JointFixture&, Def&)>;
   const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
     expect_def_rejected<Def>(m, existing, type + "." + field, value);
   };
   // Named like DistanceJointDef's min/max: the field checked against the other, showing both.
-  check([](Fixture&, Def& d) { d.limit = {true, 0.5, -0.25}; }, "limit.lower", "upper (-0.25)");
-  check([](Fixture&, Def& d) { d.limit = {true, kNan, 1.0}; }, "limit.lower", "nan");
-  check([](Fixture&, Def& d) { d.limit = {true, -1.0, kInf}; }, "limit.upper", "inf");
-  check([](Fixture&, Def& d) { d.motor.speed = kNan; }, "motor.speed", "nan");
+  check([](JointFixture&, Def& d) { d.limit = {true, 0.5, -0.25}; }, "limit.lower", "upper (-0.25)");
+  check([](JointFixture&, Def& d) { d.limit = {true, kNan, 1.0}; }, "limit.lower", "nan");
+  check([](JointFixture&, Def& d) { d.limit = {true, -1.0, kInf}; }, "limit.upper", "inf");
+  check([](JointFixture&, Def& d) { d.motor.speed = kNan; }, "motor.speed", "nan");
   check(
-      [&](Fixture&, Def& d) {
+      [&](JointFixture&, Def& d) {
         if constexpr (requires { d.motor.max_torque; }) {
           d.motor.max_torque = -2.0;
         } else {
@@ -238,7 +238,7 @@ void expect_axis_rejections(const std::string& type, JointId Fixture::*existing,
       },
       "motor." + max_field, "-2");
   check(
-      [&](Fixture&, Def& d) {
+      [&](JointFixture&, Def& d) {
         if constexpr (requires { d.motor.max_torque; }) {
           d.motor.max_torque = kNan;
         } else {
@@ -246,48 +246,48 @@ void expect_axis_rejections(const std::string& type, JointId Fixture::*existing,
         }
       },
       "motor." + max_field, "nan");
-  check([](Fixture&, Def& d) { d.spring = {Spring::rigid(), 0.0}; }, "spring.spring.hertz", "inf");
+  check([](JointFixture&, Def& d) { d.spring = {Spring::rigid(), 0.0}; }, "spring.spring.hertz", "inf");
   check(
-      [](Fixture&, Def& d) {
+      [](JointFixture&, Def& d) {
         d.spring = {Spring::soft(-1.0, 0.5), 0.0};
       },
       "spring.spring.hertz", "-1");
   check(
-      [](Fixture&, Def& d) {
+      [](JointFixture&, Def& d) {
         d.spring = {Spring::soft(2.0, kNan), 0.0};
       },
       "spring.spring.damping_ratio", "nan");
   check(
-      [](Fixture&, Def& d) {
+      [](JointFixture&, Def& d) {
         d.spring = {Spring::soft(2.0, 0.5), kNan};
       },
       "spring.target", "nan");
 }
 
 TEST(JointValidation, RevoluteAxisControls) {
-  expect_axis_rejections<RevoluteJointDef>("RevoluteJointDef", &Fixture::revolute, "max_torque");
+  expect_axis_rejections<RevoluteJointDef>("RevoluteJointDef", &JointFixture::revolute, "max_torque");
 }
 TEST(JointValidation, PrismaticAxisControls) {
-  expect_axis_rejections<PrismaticJointDef>("PrismaticJointDef", &Fixture::prismatic, "max_force");
+  expect_axis_rejections<PrismaticJointDef>("PrismaticJointDef", &JointFixture::prismatic, "max_force");
 }
 
 TEST(JointValidation, WheelAxisControls) {
-  expect_axis_rejections<WheelJointDef>("WheelJointDef", &Fixture::wheel, "max_torque");
+  expect_axis_rejections<WheelJointDef>("WheelJointDef", &JointFixture::wheel, "max_torque");
 }
 
 // The sprung mass the spring's hertz refers to must be there when the spring is soft.
 TEST(JointValidation, WheelSprungMassAndSteering) {
-  using Mutate = std::function<void(Fixture&, WheelJointDef&)>;
+  using Mutate = std::function<void(JointFixture&, WheelJointDef&)>;
   const auto check = [](Mutate m, const std::string& field, const std::string& value) {
-    expect_def_rejected<WheelJointDef>(m, &Fixture::wheel, "WheelJointDef." + field, value);
+    expect_def_rejected<WheelJointDef>(m, &JointFixture::wheel, "WheelJointDef." + field, value);
   };
-  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = 0.0; }, "sprung_mass", "0");
-  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = -300.0; }, "sprung_mass", "-300");
-  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = kNan; }, "sprung_mass", "nan");
-  check([](Fixture&, WheelJointDef& d) { d.sprung_mass = 2e9; }, "sprung_mass", "2e+09");
-  check([](Fixture&, WheelJointDef& d) { d.steering = kInf; }, "steering", "inf");
+  check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = 0.0; }, "sprung_mass", "0");
+  check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = -300.0; }, "sprung_mass", "-300");
+  check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = kNan; }, "sprung_mass", "nan");
+  check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = 2e9; }, "sprung_mass", "2e+09");
+  check([](JointFixture&, WheelJointDef& d) { d.steering = kInf; }, "steering", "inf");
   // A free spring needs no sprung mass.
-  Fixture f = make_world();
+  JointFixture f = make_world();
   WheelJointDef d = f.world.joint_def<WheelJointDef>(f.wheel);
   d.spring.spring = Spring::free();
   d.sprung_mass = 0.0;
@@ -295,67 +295,67 @@ TEST(JointValidation, WheelSprungMassAndSteering) {
 }
 
 TEST(JointValidation, MotorCapsAndSprings) {
-  using Mutate = std::function<void(Fixture&, MotorJointDef&)>;
+  using Mutate = std::function<void(JointFixture&, MotorJointDef&)>;
   const auto check = [](Mutate m, const std::string& field, const std::string& value) {
-    expect_def_rejected<MotorJointDef>(m, &Fixture::motor, "MotorJointDef." + field, value);
+    expect_def_rejected<MotorJointDef>(m, &JointFixture::motor, "MotorJointDef." + field, value);
   };
-  check([](Fixture&, MotorJointDef& d) { d.max_force = -1.0; }, "max_force", "-1");
-  check([](Fixture&, MotorJointDef& d) { d.max_torque = kNan; }, "max_torque", "nan");
-  check([](Fixture&, MotorJointDef& d) { d.max_force = 2e9; }, "max_force", "2e+09");
-  check([](Fixture&, MotorJointDef& d) { d.linear = Spring::free(); }, "linear.hertz", "0");
-  check([](Fixture&, MotorJointDef& d) { d.angular = Spring::soft(-2.0, 1.0); }, "angular.hertz",
+  check([](JointFixture&, MotorJointDef& d) { d.max_force = -1.0; }, "max_force", "-1");
+  check([](JointFixture&, MotorJointDef& d) { d.max_torque = kNan; }, "max_torque", "nan");
+  check([](JointFixture&, MotorJointDef& d) { d.max_force = 2e9; }, "max_force", "2e+09");
+  check([](JointFixture&, MotorJointDef& d) { d.linear = Spring::free(); }, "linear.hertz", "0");
+  check([](JointFixture&, MotorJointDef& d) { d.angular = Spring::soft(-2.0, 1.0); }, "angular.hertz",
         "-2");
 }
 
 TEST(JointValidation, WeldSprings) {
-  using Mutate = std::function<void(Fixture&, WeldJointDef&)>;
+  using Mutate = std::function<void(JointFixture&, WeldJointDef&)>;
   const auto check = [](Mutate m, const std::string& field, const std::string& value) {
-    expect_def_rejected<WeldJointDef>(m, &Fixture::weld, "WeldJointDef." + field, value);
+    expect_def_rejected<WeldJointDef>(m, &JointFixture::weld, "WeldJointDef." + field, value);
   };
-  check([](Fixture&, WeldJointDef& d) { d.linear = Spring::soft(-3.0, 0.1); }, "linear.hertz",
+  check([](JointFixture&, WeldJointDef& d) { d.linear = Spring::soft(-3.0, 0.1); }, "linear.hertz",
         "-3");
-  check([](Fixture&, WeldJointDef& d) { d.angular = Spring::soft(kNan, 0.1); }, "angular.hertz",
+  check([](JointFixture&, WeldJointDef& d) { d.angular = Spring::soft(kNan, 0.1); }, "angular.hertz",
         "nan");
-  check([](Fixture&, WeldJointDef& d) { d.angular = Spring::soft(2.0, -0.5); },
+  check([](JointFixture&, WeldJointDef& d) { d.angular = Spring::soft(2.0, -0.5); },
         "angular.damping_ratio", "-0.5");
 }
 
 // The cone's half-angles in (0, pi], the twist limit within [-pi, pi], the orientation spring
 // soft or free towards a usable quaternion, the friction's torque >= 0.
 TEST(JointValidation, SwingTwistLimitsSpringAndFriction) {
-  using Mutate = std::function<void(Fixture&, SwingTwistJointDef&)>;
+  using Mutate = std::function<void(JointFixture&, SwingTwistJointDef&)>;
   const auto check = [](Mutate m, const std::string& field, const std::string& value) {
-    expect_def_rejected<SwingTwistJointDef>(m, &Fixture::swing_twist, "SwingTwistJointDef." + field,
+    expect_def_rejected<SwingTwistJointDef>(m, &JointFixture::swing_twist, "SwingTwistJointDef." + field,
                                             value);
   };
-  check([](Fixture&, SwingTwistJointDef& d) { d.cone.half_angle_x = 0.0; }, "cone.half_angle_x",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_x = 0.0; }, "cone.half_angle_x",
         "0");
-  check([](Fixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = 3.5; }, "cone.half_angle_y",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = 3.5; }, "cone.half_angle_y",
         "3.5");
-  check([](Fixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = kNan; }, "cone.half_angle_y",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = kNan; }, "cone.half_angle_y",
         "nan");
-  check([](Fixture&, SwingTwistJointDef& d) { d.cone = {false, kInf, 0.5}; }, "cone.half_angle_x",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone = {false, kInf, 0.5}; }, "cone.half_angle_x",
         "inf");
-  check([](Fixture&, SwingTwistJointDef& d) { d.twist = {true, 0.5, -0.25}; }, "twist.lower",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.twist = {true, 0.5, -0.25}; }, "twist.lower",
         "upper (-0.25)");
-  check([](Fixture&, SwingTwistJointDef& d) { d.twist = {true, -4.0, 0.5}; }, "twist.lower", "-4");
-  check([](Fixture&, SwingTwistJointDef& d) { d.twist = {true, -0.5, kNan}; }, "twist.upper",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.twist = {true, -4.0, 0.5}; }, "twist.lower", "-4");
+  check([](JointFixture&, SwingTwistJointDef& d) { d.twist = {true, -0.5, kNan}; }, "twist.upper",
         "nan");
-  check([](Fixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::rigid(); },
+  check([](JointFixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::rigid(); },
         "spring.spring.hertz", "inf");
-  check([](Fixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::soft(2.0, -1.0); },
+  check([](JointFixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::soft(2.0, -1.0); },
         "spring.spring.damping_ratio", "-1");
-  check([](Fixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(0.0, 0.0, 0.0, 0.0); },
+  check([](JointFixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(0.0, 0.0, 0.0, 0.0); },
         "spring.target", "0");
-  check([](Fixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(1.0, kNan, 0.0, 0.0); },
+  check([](JointFixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(1.0, kNan, 0.0, 0.0); },
         "spring.target", "nan");
-  check([](Fixture&, SwingTwistJointDef& d) { d.motor.max_torque = -1.0; }, "motor.max_torque",
+  check([](JointFixture&, SwingTwistJointDef& d) { d.motor.max_torque = -1.0; }, "motor.max_torque",
         "-1");
 }
 
 // The typed accessors refuse a joint of another type; frames_at refuses what it cannot use.
 TEST(JointValidation, WrongTypeAndFramesAt) {
-  Fixture f = make_world();
+  JointFixture f = make_world();
   const std::uint64_t before = f.world.state_hash();
   EXPECT_THROW(f.world.joint_def<WeldJointDef>(f.revolute), InvalidArgument);
   EXPECT_THROW(f.world.joint_def<RevoluteJointDef>(f.prismatic), InvalidArgument);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "frame_constants.hpp"
 #include "joints/joint_test_support.hpp"
 #include "scenes/joint_at.hpp"
 
@@ -14,15 +15,11 @@ namespace softstep {
 namespace {
 
 using test::kDt;
-constexpr double kG = 9.81;
+using test::kG;
 
-// As in revolute_test.cpp: a rigid row carrying a load L on its effective mass m_eff
-// (alpha = L / m_eff) sags alpha / omega_r^2 (omega_r = 2 pi 60 Hz), a speculative limit
-// row lets through at most alpha h^2; twice the sum.
-constexpr double kOmegaRigid = 2.0 * std::numbers::pi * 60.0;
-double rigid_row_bound(double alpha, double h) {
-  return 2.0 * (alpha * h * h + alpha / (kOmegaRigid * kOmegaRigid));
-}
+// The rigid row's bounds: test::rigid_row_bound (joint_test_support.hpp).
+using test::kOmegaRigid;
+using test::rigid_row_bound;
 
 struct Slider {
   World world;

@@ -8,11 +8,12 @@
 
 #include "scenes/ragdoll_scene.hpp"
 #include "simd_widths.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 double fastest_body(const World& world, const scenes::RagdollScene& scene) {
   double fastest = 0.0;

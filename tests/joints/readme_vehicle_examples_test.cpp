@@ -11,7 +11,7 @@
 namespace softstep {
 namespace {
 
-constexpr double kDt = 1.0 / 60.0;
+using test::kDt;
 
 BodyId box(World& world, const Eigen::Vector3d& at, double mass, BodyType type) {
   BodyDef d;
@@ -90,6 +90,7 @@ TEST(Readme, BridgeExampleHangsTheDeckFromItsRopes) {
   World world(settings);
   {
 #include "readme_examples/bridge_example.inc"
+#include "frame_constants.hpp"
     ASSERT_EQ(ropes.size(), 16u);
     for (int i = 0; i < 180; ++i) world.step(kDt);
     double carried = 0.0;

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <ostream>
 
+#include "frame_constants.hpp"
 #include "joints/joint_test_support.hpp"
 #include "scenes/joint_at.hpp"
 
@@ -16,8 +17,8 @@ namespace softstep {
 namespace {
 
 using test::kDt;
-constexpr double kPi = std::numbers::pi;
-constexpr double kG = 9.81;
+using test::kG;
+using test::kPi;
 
 // The rigid row's bounds: test::rigid_row_bound (joint_test_support.hpp).
 using test::kOmegaRigid;

@@ -12,12 +12,13 @@
 
 #include "joints/joint_test_support.hpp"
 #include "scenes/joint_at.hpp"
+#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {
 
 using test::kDt;
-constexpr double kPi = std::numbers::pi;
+using test::kPi;
 
 // A rigid row under a load that accelerates it at alpha leaves its limit by at most
 // test::rigid_row_bound(alpha, h) (joint_test_support.hpp: the sag and one sub-step's travel).

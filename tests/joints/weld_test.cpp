@@ -7,6 +7,7 @@
 #include <numbers>
 #include <ostream>
 
+#include "frame_constants.hpp"
 #include "joints/joint_test_support.hpp"
 #include "scenes/joint_at.hpp"
 
@@ -14,8 +15,8 @@ namespace softstep {
 namespace {
 
 using test::kDt;
-constexpr double kPi = std::numbers::pi;
-constexpr double kG = 9.81;
+using test::kG;
+using test::kPi;
 
 // A 1 m beam of 2 kg (1.0 x 0.1 x 0.1 m) welded at one end to a static wall, horizontal,
 // under gravity: the weld's rows hold the weight m g and the torque m g L/2.
