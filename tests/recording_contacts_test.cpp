@@ -10,14 +10,13 @@
 #include <nlohmann/json.hpp>
 
 #include "contacts/analytic_contacts.hpp"
+#include "frame_constants.hpp"
 #include "recording_files.hpp"
 #include "softstep/recording.hpp"
 #include "softstep/scene_file.hpp"
-#include "frame_constants.hpp"
 
 namespace softstep::test {
 namespace {
-
 
 // Three stacks of four boxes on the ground, a bouncing ball (restitution), a ball rolling on
 // a conveyor (rolling resistance, tangent speed, a manifold key) and a fast-rolling wheel given
@@ -148,7 +147,8 @@ TEST(RecordingContacts, DestroyingABodyDropsItsCacheEntriesAtOnce) {
     const BodyId kept = add_box(world, {0.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
     const BodyId lower = add_box(world, {5.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
     const BodyId upper = add_box(world, {5.0, 1.5, 0.0}, 5.0, kUnitCubeHalf);
-    std::vector<ContactManifold> contacts{box_on_ground(world, ground, kept, kUnitCubeHalf, 0.0, 0.5)};
+    std::vector<ContactManifold> contacts{
+        box_on_ground(world, ground, kept, kUnitCubeHalf, 0.0, 0.5)};
     if (touched) {
       contacts.push_back(box_on_ground(world, ground, lower, kUnitCubeHalf, 0.0, 0.5));
       contacts.push_back(box_on_box(world, lower, upper, kUnitCubeHalf));

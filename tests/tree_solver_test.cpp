@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "frame_constants.hpp"
 #include "rejection_check.hpp"
 #include "scenes/chain_scene.hpp"
 #include "simd_widths.hpp"
 #include "softstep/reference.hpp"
 #include "softstep/softstep.hpp"
-#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <vector>
 
+#include "frame_constants.hpp"
 #include "scenes/chain_scene.hpp"
 #include "scenes/suspension_bridge.hpp"
-#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {

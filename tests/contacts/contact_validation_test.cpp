@@ -12,7 +12,6 @@
 namespace softstep::test {
 namespace {
 
-
 struct Scene {
   World world;
   BodyId ground, box, other;

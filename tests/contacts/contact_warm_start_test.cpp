@@ -14,7 +14,6 @@
 namespace softstep::test {
 namespace {
 
-
 // The same contact seen from the other body: A and B swap, the normal turns, anchors swap.
 ContactManifold swapped(const ContactManifold& m) {
   ContactManifold s = m;
@@ -85,7 +84,8 @@ struct Column {
 void build(Column& c, int count, Eigen::Vector3d at) {
   c.ground = add_ground(c.world);
   for (int i = 0; i < count; ++i) {
-    c.boxes.push_back(add_box(c.world, at + Eigen::Vector3d(0.0, 0.5 + i, 0.0), 10.0, kUnitCubeHalf));
+    c.boxes.push_back(
+        add_box(c.world, at + Eigen::Vector3d(0.0, 0.5 + i, 0.0), 10.0, kUnitCubeHalf));
   }
 }
 
@@ -135,7 +135,8 @@ TEST(ContactWarmStart, DestroyingABodyKeepsTheOthersMatched) {
   build(first, 4, Eigen::Vector3d::Zero());
   second.ground = first.ground;
   for (int i = 0; i < 4; ++i) {
-    second.boxes.push_back(add_box(first.world, Eigen::Vector3d(3.0, 0.5 + i, 0.0), 10.0, kUnitCubeHalf));
+    second.boxes.push_back(
+        add_box(first.world, Eigen::Vector3d(3.0, 0.5 + i, 0.0), 10.0, kUnitCubeHalf));
   }
   World& world = first.world;
   const auto both = [&] {

@@ -8,8 +8,8 @@
 #include <numbers>
 #include <vector>
 
-#include "scenes/vehicle_scene.hpp"
 #include "frame_constants.hpp"
+#include "scenes/vehicle_scene.hpp"
 
 namespace softstep {
 namespace {

@@ -292,17 +292,19 @@ TEST(AbsoluteSpring, BadValuesAndJointsThatTakeNoAbsoluteUnitsAreRejected) {
   };
   const double nan = std::numeric_limits<double>::quiet_NaN();
   test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(-1.0, 0.0)),
-                                    "PrismaticJointDef.spring.spring.absolute_stiffness", "-1");
+                                          "PrismaticJointDef.spring.spring.absolute_stiffness",
+                                          "-1");
   test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(1.0, nan)),
-                                    "PrismaticJointDef.spring.spring.absolute_damping", "nan");
+                                          "PrismaticJointDef.spring.spring.absolute_damping",
+                                          "nan");
   Spring stray = Spring::soft(2.0, 0.1);
   stray.absolute_stiffness = 5.0;  // a relative spring with an absolute field set
-  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(stray),
-                                    "PrismaticJointDef.spring.spring.absolute_stiffness", "5");
+  test::expect_rejected_on<SpringFixture>(
+      make_fixture, slider_with(stray), "PrismaticJointDef.spring.spring.absolute_stiffness", "5");
   Spring mixed = Spring::absolute(5.0, 1.0);
   mixed.hertz = 2.0;
   test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(mixed),
-                                    "PrismaticJointDef.spring.spring.hertz", "2");
+                                          "PrismaticJointDef.spring.spring.hertz", "2");
   test::expect_rejected_on<SpringFixture>(
       make_fixture,
       [](SpringFixture& f) {

@@ -139,8 +139,8 @@ void expect_frame_rejections(const std::string& type, JointId JointFixture::*exi
       "frame_a.local_axis", "inf");
   check([](JointFixture&, Def& d) { d.frame_b.local_reference = 2.0 * d.frame_b.local_axis; },
         "frame_b.local_reference", "parallel");
-  check([](JointFixture&, Def& d) { d.frame_a.local_reference.setZero(); }, "frame_a.local_reference",
-        "0");
+  check([](JointFixture&, Def& d) { d.frame_a.local_reference.setZero(); },
+        "frame_a.local_reference", "0");
   // Creating: the same body twice, an unknown or destroyed body. set_joint: bodies changed.
   expect_rejected(
       [existing](JointFixture& f) {
@@ -174,7 +174,8 @@ void expect_anchor_and_body_change_named(const std::string& type, JointId JointF
   const auto check = [&](Mutate m, const std::string& field, const std::string& value) {
     expect_def_rejected<Def>(m, existing, type + "." + field, value);
   };
-  check([](JointFixture&, Def& d) { d.frame_a.local_anchor.y() = kNan; }, "frame_a.local_anchor", "nan");
+  check([](JointFixture&, Def& d) { d.frame_a.local_anchor.y() = kNan; }, "frame_a.local_anchor",
+        "nan");
   check([](JointFixture&, Def& d) { d.frame_b.local_anchor.z() = 2e9; }, "frame_b.local_anchor",
         "2e+09");
   expect_rejected(
@@ -187,8 +188,10 @@ void expect_anchor_and_body_change_named(const std::string& type, JointId JointF
 }
 
 TEST(JointValidation, AnchorsAndChangedBodiesNamedAsTheCallerSpellsThem) {
-  expect_anchor_and_body_change_named<RevoluteJointDef>("RevoluteJointDef", &JointFixture::revolute);
-  expect_anchor_and_body_change_named<PrismaticJointDef>("PrismaticJointDef", &JointFixture::prismatic);
+  expect_anchor_and_body_change_named<RevoluteJointDef>("RevoluteJointDef",
+                                                        &JointFixture::revolute);
+  expect_anchor_and_body_change_named<PrismaticJointDef>("PrismaticJointDef",
+                                                         &JointFixture::prismatic);
   expect_anchor_and_body_change_named<WeldJointDef>("WeldJointDef", &JointFixture::weld);
   expect_anchor_and_body_change_named<SwingTwistJointDef>("SwingTwistJointDef",
                                                           &JointFixture::swing_twist);
@@ -224,7 +227,11 @@ void expect_axis_rejections(const std::string& type, JointId JointFixture::*exis
     expect_def_rejected<Def>(m, existing, type + "." + field, value);
   };
   // Named like DistanceJointDef's min/max: the field checked against the other, showing both.
-  check([](JointFixture&, Def& d) { d.limit = {true, 0.5, -0.25}; }, "limit.lower", "upper (-0.25)");
+  check(
+      [](JointFixture&, Def& d) {
+        d.limit = {true, 0.5, -0.25};
+      },
+      "limit.lower", "upper (-0.25)");
   check([](JointFixture&, Def& d) { d.limit = {true, kNan, 1.0}; }, "limit.lower", "nan");
   check([](JointFixture&, Def& d) { d.limit = {true, -1.0, kInf}; }, "limit.upper", "inf");
   check([](JointFixture&, Def& d) { d.motor.speed = kNan; }, "motor.speed", "nan");
@@ -246,7 +253,11 @@ void expect_axis_rejections(const std::string& type, JointId JointFixture::*exis
         }
       },
       "motor." + max_field, "nan");
-  check([](JointFixture&, Def& d) { d.spring = {Spring::rigid(), 0.0}; }, "spring.spring.hertz", "inf");
+  check(
+      [](JointFixture&, Def& d) {
+        d.spring = {Spring::rigid(), 0.0};
+      },
+      "spring.spring.hertz", "inf");
   check(
       [](JointFixture&, Def& d) {
         d.spring = {Spring::soft(-1.0, 0.5), 0.0};
@@ -265,10 +276,12 @@ void expect_axis_rejections(const std::string& type, JointId JointFixture::*exis
 }
 
 TEST(JointValidation, RevoluteAxisControls) {
-  expect_axis_rejections<RevoluteJointDef>("RevoluteJointDef", &JointFixture::revolute, "max_torque");
+  expect_axis_rejections<RevoluteJointDef>("RevoluteJointDef", &JointFixture::revolute,
+                                           "max_torque");
 }
 TEST(JointValidation, PrismaticAxisControls) {
-  expect_axis_rejections<PrismaticJointDef>("PrismaticJointDef", &JointFixture::prismatic, "max_force");
+  expect_axis_rejections<PrismaticJointDef>("PrismaticJointDef", &JointFixture::prismatic,
+                                            "max_force");
 }
 
 TEST(JointValidation, WheelAxisControls) {
@@ -303,8 +316,8 @@ TEST(JointValidation, MotorCapsAndSprings) {
   check([](JointFixture&, MotorJointDef& d) { d.max_torque = kNan; }, "max_torque", "nan");
   check([](JointFixture&, MotorJointDef& d) { d.max_force = 2e9; }, "max_force", "2e+09");
   check([](JointFixture&, MotorJointDef& d) { d.linear = Spring::free(); }, "linear.hertz", "0");
-  check([](JointFixture&, MotorJointDef& d) { d.angular = Spring::soft(-2.0, 1.0); }, "angular.hertz",
-        "-2");
+  check([](JointFixture&, MotorJointDef& d) { d.angular = Spring::soft(-2.0, 1.0); },
+        "angular.hertz", "-2");
 }
 
 TEST(JointValidation, WeldSprings) {
@@ -314,8 +327,8 @@ TEST(JointValidation, WeldSprings) {
   };
   check([](JointFixture&, WeldJointDef& d) { d.linear = Spring::soft(-3.0, 0.1); }, "linear.hertz",
         "-3");
-  check([](JointFixture&, WeldJointDef& d) { d.angular = Spring::soft(kNan, 0.1); }, "angular.hertz",
-        "nan");
+  check([](JointFixture&, WeldJointDef& d) { d.angular = Spring::soft(kNan, 0.1); },
+        "angular.hertz", "nan");
   check([](JointFixture&, WeldJointDef& d) { d.angular = Spring::soft(2.0, -0.5); },
         "angular.damping_ratio", "-0.5");
 }
@@ -325,29 +338,44 @@ TEST(JointValidation, WeldSprings) {
 TEST(JointValidation, SwingTwistLimitsSpringAndFriction) {
   using Mutate = std::function<void(JointFixture&, SwingTwistJointDef&)>;
   const auto check = [](Mutate m, const std::string& field, const std::string& value) {
-    expect_def_rejected<SwingTwistJointDef>(m, &JointFixture::swing_twist, "SwingTwistJointDef." + field,
-                                            value);
+    expect_def_rejected<SwingTwistJointDef>(m, &JointFixture::swing_twist,
+                                            "SwingTwistJointDef." + field, value);
   };
-  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_x = 0.0; }, "cone.half_angle_x",
-        "0");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = 3.5; }, "cone.half_angle_y",
-        "3.5");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = kNan; }, "cone.half_angle_y",
-        "nan");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.cone = {false, kInf, 0.5}; }, "cone.half_angle_x",
-        "inf");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.twist = {true, 0.5, -0.25}; }, "twist.lower",
-        "upper (-0.25)");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.twist = {true, -4.0, 0.5}; }, "twist.lower", "-4");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.twist = {true, -0.5, kNan}; }, "twist.upper",
-        "nan");
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_x = 0.0; },
+        "cone.half_angle_x", "0");
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = 3.5; },
+        "cone.half_angle_y", "3.5");
+  check([](JointFixture&, SwingTwistJointDef& d) { d.cone.half_angle_y = kNan; },
+        "cone.half_angle_y", "nan");
+  check(
+      [](JointFixture&, SwingTwistJointDef& d) {
+        d.cone = {false, kInf, 0.5};
+      },
+      "cone.half_angle_x", "inf");
+  check(
+      [](JointFixture&, SwingTwistJointDef& d) {
+        d.twist = {true, 0.5, -0.25};
+      },
+      "twist.lower", "upper (-0.25)");
+  check(
+      [](JointFixture&, SwingTwistJointDef& d) {
+        d.twist = {true, -4.0, 0.5};
+      },
+      "twist.lower", "-4");
+  check(
+      [](JointFixture&, SwingTwistJointDef& d) {
+        d.twist = {true, -0.5, kNan};
+      },
+      "twist.upper", "nan");
   check([](JointFixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::rigid(); },
         "spring.spring.hertz", "inf");
   check([](JointFixture&, SwingTwistJointDef& d) { d.spring.spring = Spring::soft(2.0, -1.0); },
         "spring.spring.damping_ratio", "-1");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(0.0, 0.0, 0.0, 0.0); },
+  check([](JointFixture&,
+           SwingTwistJointDef& d) { d.spring.target = Quaternion(0.0, 0.0, 0.0, 0.0); },
         "spring.target", "0");
-  check([](JointFixture&, SwingTwistJointDef& d) { d.spring.target = Quaternion(1.0, kNan, 0.0, 0.0); },
+  check([](JointFixture&,
+           SwingTwistJointDef& d) { d.spring.target = Quaternion(1.0, kNan, 0.0, 0.0); },
         "spring.target", "nan");
   check([](JointFixture&, SwingTwistJointDef& d) { d.motor.max_torque = -1.0; }, "motor.max_torque",
         "-1");

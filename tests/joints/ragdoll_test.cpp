@@ -6,9 +6,9 @@
 
 #include <algorithm>
 
+#include "frame_constants.hpp"
 #include "scenes/ragdoll_scene.hpp"
 #include "simd_widths.hpp"
-#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {

@@ -89,8 +89,8 @@ TEST(Readme, BridgeExampleHangsTheDeckFromItsRopes) {
   settings.sleeping = false;
   World world(settings);
   {
-#include "readme_examples/bridge_example.inc"
 #include "frame_constants.hpp"
+#include "readme_examples/bridge_example.inc"
     ASSERT_EQ(ropes.size(), 16u);
     for (int i = 0; i < 180; ++i) world.step(kDt);
     double carried = 0.0;

@@ -10,9 +10,9 @@
 #include <numbers>
 #include <ostream>
 
+#include "frame_constants.hpp"
 #include "joints/joint_test_support.hpp"
 #include "scenes/joint_at.hpp"
-#include "frame_constants.hpp"
 
 namespace softstep {
 namespace {
