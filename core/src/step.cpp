@@ -110,6 +110,17 @@ void run_on_host_tasks(const TaskCallbacks& tasks, int threads, Run& run) {
 
 }  // namespace
 
+// The geometric inertia's time scale t: the sub-step, but never less than the default one
+// (1/240 s: 60 Hz, 4 sub-steps). The inertia added, t^2 sum(|F| |r|), keeps a link's
+// alignment mode near 1/t; with t = h, finer sub-steps shrank it with h^2, and the "tiny
+// inertia" hard case (20 links of inertia x 1e-6 hanging at 30 degrees), whose worst gap
+// settles to 3 mm at 4 sub-steps, fell apart at 16 (gaps of 0.5-1.2 m, 131 m/s) and blew up
+// at 64: its links turned about a radian per sub-step whatever the sub-step (even one
+// sub-step per step of 1/960 s opened 0.34 m). Floored, it holds within 4 mm at 8, 16 and
+// 64 sub-steps (2026-11-26). In float, as h is: the default sub-step, float(1/60 / 4), is
+// the floor bit for bit, so default trajectories are unchanged.
+constexpr float kGeometricTimeFloor = 1.0f / 240.0f;
+
 bool World::Impl::geometric_inertia_applies(double impulse_substep) const {
   // A world without awake joints or with the setting off pays no pass.
   return settings.geometric_stiffness && impulse_substep > 0.0 && !plan.kernels.empty();
@@ -133,9 +144,9 @@ void World::Impl::geometric_inertia(float h, double impulse_substep,
   // Read by the mass records, after the barrier that ends the sums.
   if (share.thread == 0) extra_inertia_on = true;
   // |force| = |impulse of a sub-step| / that sub-step
-  lane_solver->accumulate_geometric_inertia(joints, bodies,
-                                            double(h) * double(h) / impulse_substep,
-                                            extra_inertia, share);
+  const double t = std::max(h, kGeometricTimeFloor);
+  lane_solver->accumulate_geometric_inertia(joints, bodies, t * t / impulse_substep, extra_inertia,
+                                            share);
 }
 
 void World::Impl::list_bodies() {
@@ -337,9 +348,17 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   // tiny inertia then spins through the whole first step (0.5 m joint error in the "tiny
   // inertia" hard case). The first sub-step's impulses are a force; the inertia is recomputed
   // from them before the second sub-step (0.15 m). Probing the first sub-step and restarting
-  // it with that inertia was tried, and did worse (0.35 m).
+  // it with that inertia was tried, and did worse (0.35 m). Sub-steps finer than
+  // kGeometricTimeFloor recompute it before every later sub-step of that step: one sub-step's
+  // impulses while the tension builds are too small a force (at 64 sub-steps the case blew
+  // up with the floor alone). At the default sub-step and coarser, doing so measured worse
+  // (0.25 m against 0.15), so it stays once.
   const bool refresh_inertia = w.joints_without_history && s.geometric_stiffness &&
                                s.substeps > 1 && !w.plan.kernels.empty();
+  const bool refresh_every_substep = refresh_inertia && h < kGeometricTimeFloor;
+  const auto refreshes_before = [&](int sub) {
+    return sub >= 1 && refresh_inertia && (sub == 1 || refresh_every_substep);
+  };
   w.plan_geometric_inertia(inertia_substep, refresh_inertia);
   const simd::BodyArrays arrays = w.solver_bodies.arrays();
   LaneSolver& solver = *w.lane_solver;
@@ -397,7 +416,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     for (int sub = 0; sub < s.substeps; ++sub) {
       if (planned(PlanStage::SpinLimit)) {
         stage(Stage::IntegrateVelocities, [&] {
-          if (sub == 1 && refresh_inertia) {
+          if (refreshes_before(sub)) {
             w.geometric_inertia(h, h, share);
             w.refresh_inertia(share);  // integrate_velocities reads no mass record
           }
@@ -438,8 +457,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeSolve)) {
         stage(Stage::Solve, [&] {
-          // The masses change at sub-step 1 when the inertia is refreshed.
-          const bool same_masses = sub > 0 && !(sub == 1 && refresh_inertia);
+          // The masses change at the sub-steps where the inertia is refreshed.
+          const bool same_masses = sub > 0 && !refreshes_before(sub);
           w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
                        {.with_bias = true, .step_start = sub == 0,
                         .reuse_relax_factor = same_masses},
