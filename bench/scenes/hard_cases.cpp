@@ -200,6 +200,14 @@ HardCaseOutcome run_hanging_chain(const HangingChainCase& c, WorldSettings s) {
   return out;
 }
 
+// The 20 x 1 kg chain released at 30 degrees of the alignment-mode cases, judged by energy.
+HangingChainCase tilted_chain(double inertia_scale = 1.0) {
+  return {.masses = std::vector<double>(20, 1.0),
+          .tilt = kPi / 6.0,
+          .inertia_scale = inertia_scale,
+          .energy_speed_bound = true};
+}
+
 std::string format_g(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
@@ -645,13 +653,11 @@ std::vector<HardCase> hard_cases() {
   cases.push_back({"big steps",
                    "20 x 1 kg links hanging at 30 degrees, dt = 1/15 s, 1 sub-step, 40 s", false,
                    [](const WorldSettings& s) {
-                     return run_hanging_chain({.masses = std::vector<double>(20, 1.0),
-                                               .tilt = kPi / 6.0,
-                                               .dt = 1.0 / 15.0,
-                                               .steps = 600,
-                                               .substeps = 1,
-                                               .energy_speed_bound = true},
-                                              s);
+                     HangingChainCase c = tilted_chain();
+                     c.dt = 1.0 / 15.0;
+                     c.steps = 600;
+                     c.substeps = 1;
+                     return run_hanging_chain(c, s);
                    }});
   cases.push_back({"coincident anchors",
                    "distance joint, rest 0.5 m, bodies start at the same point, 10 s", false,
@@ -659,21 +665,9 @@ std::vector<HardCase> hard_cases() {
   cases.push_back({"zero rest length", "distance joint, rest 0 m, 10 s", false,
                    [](const WorldSettings& s) { return run_degenerate_distance(0.0, s); }});
   cases.push_back({"huge inertia", "20 x 1 kg links hanging at 30 degrees, inertia x 1e6", false,
-                   [](const WorldSettings& s) {
-                     return run_hanging_chain({.masses = std::vector<double>(20, 1.0),
-                                               .tilt = kPi / 6.0,
-                                               .inertia_scale = 1e6,
-                                               .energy_speed_bound = true},
-                                              s);
-                   }});
+                   [](const WorldSettings& s) { return run_hanging_chain(tilted_chain(1e6), s); }});
   cases.push_back({"tiny inertia", "20 x 1 kg links hanging at 30 degrees, inertia x 1e-6", false,
-                   [](const WorldSettings& s) {
-                     return run_hanging_chain({.masses = std::vector<double>(20, 1.0),
-                                               .tilt = kPi / 6.0,
-                                               .inertia_scale = 1e-6,
-                                               .energy_speed_bound = true},
-                                              s);
-                   },
+                   [](const WorldSettings& s) { return run_hanging_chain(tilted_chain(1e-6), s); },
                    alignment_mode});
   // More sub-steps must not undo it (kGeometricTimeFloor, core/src/step.cpp): at 16 sub-steps
   // this chain fell apart and at 64 it blew up before the geometric inertia's time scale was
@@ -682,12 +676,9 @@ std::vector<HardCase> hard_cases() {
     cases.push_back({"tiny inertia, " + std::to_string(substeps) + " sub-steps",
                      "as above, at " + std::to_string(substeps) + " sub-steps", false,
                      [=](const WorldSettings& s) {
-                       return run_hanging_chain({.masses = std::vector<double>(20, 1.0),
-                                                 .tilt = kPi / 6.0,
-                                                 .inertia_scale = 1e-6,
-                                                 .substeps = substeps,
-                                                 .energy_speed_bound = true},
-                                                s);
+                       HangingChainCase c = tilted_chain(1e-6);
+                       c.substeps = substeps;
+                       return run_hanging_chain(c, s);
                      }});
   }
   // The exact mode holds it at the default 4 sub-steps (rigid rows, no alignment-mode spring).
@@ -696,11 +687,7 @@ std::vector<HardCase> hard_cases() {
                    "above)",
                    false, [](WorldSettings s) {
                      s.solver = SolverMode::DirectForTrees;
-                     return run_hanging_chain({.masses = std::vector<double>(20, 1.0),
-                                               .tilt = kPi / 6.0,
-                                               .inertia_scale = 1e-6,
-                                               .energy_speed_bound = true},
-                                              s);
+                     return run_hanging_chain(tilted_chain(1e-6), s);
                    }});
   cases.push_back({"kinematic driver",
                    "kinematic body circling at 0.25 rev/s, radius 1 m, dragging 20 links, 10 s",
