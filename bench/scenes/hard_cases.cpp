@@ -170,8 +170,12 @@ HardCaseOutcome run_hanging_chain(const HangingChainCase& c, WorldSettings s) {
   const double total_stretch = std::accumulate(stretch.begin(), stretch.end(), 0.0);
   // The tilted chain also swings down through its length (1 - cos tilt); a prestretched one
   // has no stretch left to fall through.
-  const double drop = (c.prestretched ? 0.0 : 2.0 * total_stretch) +
-                      (length + (c.prestretched ? total_stretch : 0.0)) * (1.0 - std::cos(c.tilt));
+  // How far a point `along` the chain can fall with `stretch_above` of stretch above it.
+  const auto drop_at = [&](double along, double stretch_above) {
+    return (c.prestretched ? 0.0 : 2.0 * stretch_above) +
+           (along + (c.prestretched ? stretch_above : 0.0)) * (1.0 - std::cos(c.tilt));
+  };
+  const double drop = drop_at(length, total_stretch);
   const double energy_gain_bound = 0.01;
   double speed_bound = 1.2 * std::sqrt(2.0 * kG * drop) + 0.1;
   if (c.energy_speed_bound) {
@@ -187,11 +191,7 @@ HardCaseOutcome run_hanging_chain(const HangingChainCase& c, WorldSettings s) {
     double stretch_above = 0.0;
     for (std::size_t i = 0; i < c.masses.size(); ++i) {
       stretch_above += stretch[i];
-      const double along = c.spacing * static_cast<double>(i + 1);
-      const double link_drop =
-          (c.prestretched ? 0.0 : 2.0 * stretch_above) +
-          (along + (c.prestretched ? stretch_above : 0.0)) * (1.0 - std::cos(c.tilt));
-      released += c.masses[i] * kG * link_drop;
+      released += c.masses[i] * kG * drop_at(c.spacing * static_cast<double>(i + 1), stretch_above);
     }
     const double lightest = *std::min_element(c.masses.begin(), c.masses.end());
     speed_bound = std::sqrt(2.0 * (1.0 + energy_gain_bound) * released / lightest);
