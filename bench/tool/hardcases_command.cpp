@@ -46,7 +46,7 @@ CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& o) {
       ->capture_default_str();
   cmd->add_option("--solver", o.solver,
                   "WorldSettings::solver for every case (the direct-for-trees cases set theirs); "
-                  "the bounds stay those of the default mode")
+                  "a rigid chain solved exactly is judged as one that does not stretch")
       ->check(CLI::IsMember(solver_names()))
       ->capture_default_str();
   cmd->add_option("--case", o.only, "only the cases whose name contains TEXT")->type_name("TEXT");
