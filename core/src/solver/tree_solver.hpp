@@ -6,10 +6,12 @@
 // exact solution of the sub-step's system with rigid rows: Gamma = 0, bias = bias_rate C
 // bounded per row by max_correction_speed while solving, no bias while relaxing. The relax
 // pass then also projects the positions: with the same factor it solves J dx = -C and moves
-// the bodies by dx (no velocity change), bounded per row by max_correction_speed * h. Without it
-// the exact velocities still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad
-// per sub-step as it cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a
-// joint 0.19 m.
+// the bodies by dx (no velocity change). It removes all the drift the step's own motion made,
+// and of a violation already there at the step's start (joints created apart, a body the user
+// moved) at most max_correction_speed * h per row and sub-step. Without it the exact velocities
+// still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per sub-step as it
+// cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a joint 0.19 m; with
+// the whole of C bounded, 2.1 cm.
 //
 // Handles rigid ball joints and rigid distance joints. An island (movable bodies linked by
 // joints) with any other joint (soft, free, limited, revolute, prismatic, weld, ...), with
@@ -77,8 +79,11 @@ class TreeSolver {
     std::vector<Mat6> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;
-    // C per joint (padding rows 0) bounded by max_correction_speed * h, refilled each pass
+    // C per joint (padding rows 0) that the relax pass's projection removes, refilled by it
     std::vector<Eigen::Vector3d> error;
+    // Per joint, the C held back for later sub-steps: all of it at the step's start, then
+    // what each projection leaves (it removes that part at max_correction_speed * h).
+    std::vector<Eigen::Vector3d> held_back;
     // Per joint, set at the step's start: both anchors turned by their body's step-start
     // orientation, and the step-start offset from body a to body b.
     std::vector<Eigen::Vector3d> anchor_a, anchor_b, offset;
@@ -90,7 +95,6 @@ class TreeSolver {
   void solve_island(Island& island, const std::vector<JointSlot>& joints,
                     const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
                     LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which);
-  static void project_positions(Island& island, SolverBodies& sb);
   std::vector<Island> islands_;
   TreeCounts counts_;
 };
