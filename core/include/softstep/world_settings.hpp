@@ -27,7 +27,9 @@ enum class SolverMode {
   // Islands whose joints form a tree (chains, ropes, ragdolls, bridges: no loop through movable
   // bodies) and are all rigid ball or rigid distance joints are solved exactly each sub-step,
   // in time linear in their rows, with rigid rows that are rigid (no softness): the load no
-  // longer stretches them. Every other island is solved iteratively, as in Iterative.
+  // longer stretches them. Every other island is solved iteratively, as in Iterative. Their
+  // positions are projected back onto the joints in the relax pass, so relax_iterations = 0
+  // also drops that (the 1,000-link whip then opens 0.16 m at 1 sub-step, 1e-6 m with it).
   DirectForTrees,
   // As DirectForTrees, except islands of a single joint, which one Gauss-Seidel pass already
   // solves exactly (a block solve of their one joint).
