@@ -614,7 +614,7 @@ std::vector<HardCase> hard_cases() {
     // to 6e-8 m and its energy to 2e-6, swings its free end at 26 m/s where a single drop
     // allows 14.7 (2026-11-26): the straight tilted start excites the chain's faster modes,
     // and a hanging chain's waves grow towards its free end, where the tension vanishes. The
-    // energy bound is weak here (hundreds of m/s: it catches a blow-up, not a whip); joint
+    // energy bound is weak here (868 m/s to 7.5 km/s: it catches a blow-up, not a whip); joint
     // error and energy gain are these cases' real checks.
     return HangingChainCase{.masses = std::vector<double>(10000, 0.1),
                             .prestretched = true,

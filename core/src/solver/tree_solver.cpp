@@ -52,12 +52,20 @@ PoseNow pose_now(const simd::DeltaRecord& d) {
           Eigen::Quaterniond(d.dq[3], d.dq[0], d.dq[1], d.dq[2])};
 }
 
-// C of a joint whose anchors are `separation` apart (a distance joint's in row 0; padding 0).
+// C of a joint whose anchors are `separation` apart (a distance joint's in row 0; padding 0;
+// a distance joint without an axis has no row, so 0).
 Eigen::Vector3d violation(const JointSlot& j, const Eigen::Vector3d& separation) {
   if (j.type == JointType::Ball) return separation;
   const double length = separation.norm();
   const double rest = std::get<DistanceJointDef>(j.def).rest_length;
   return {length > 1e-9 ? length - rest : 0.0, 0.0, 0.0};
+}
+
+// How far the joint is from holding, m: |C|, and for a distance joint without an axis its
+// rest length (it has no row to say so).
+double violation_size(const JointSlot& j, const Eigen::Vector3d& separation) {
+  if (j.type == JointType::Ball) return separation.norm();
+  return std::abs(separation.norm() - std::get<DistanceJointDef>(j.def).rest_length);
 }
 
 // Moves the bodies' deltas by dx_of(b) (linear, then a first-order turn), not their
@@ -196,6 +204,7 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
     island.dp.resize(island.joints.size());
     island.error.resize(island.joints.size());
     island.held_back.resize(island.joints.size());
+    island.kept.resize(island.joints.size());
     island.anchor_a.resize(island.joints.size());
     island.anchor_b.resize(island.joints.size());
     island.offset.resize(island.joints.size());
@@ -251,7 +260,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
       island.anchor_b[k] = b.orientation * j.local_anchor_b;
       island.offset[k] = b.position - a.position;
       island.held_back[k] =
-          violation(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
+          violation_size(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
     }
   }
   // Joint k's anchors now, as the kernels see them: the step-start anchors in double, turned
@@ -283,11 +292,15 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
       // max_correction_speed * h per sub-step. Bounding the whole of C, as the biased pass
       // bounds its speed, left the 1,000-link whip's joints open 2.1 cm as it cracked (4
       // sub-steps; 2.6e-4 m bounding only what was there before).
-      for (int r = 0; r < 3; ++r) {
-        const double allowed = std::max(std::abs(c[r]) - std::abs(island.held_back[k][r]), 0.0);
-        island.error[k][r] = std::clamp(c[r], -allowed - step, allowed + step);
-        island.held_back[k][r] = c[r] - island.error[k][r];
-      }
+      // Sizes, not rows: a violation held back turns with the bodies, and compared row by row
+      // its turned part would pass for new.
+      const double size = violation_size(j, separation);
+      double& held = island.held_back[k];
+      held = std::min(held, size);  // the motion since may have closed some of it
+      const double allowed = size - held + step;
+      island.error[k] = size > allowed ? Eigen::Vector3d(c * (allowed / size)) : c;
+      island.kept[k] = c - island.error[k];
+      held = std::max(held - step, 0.0);
     }
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
@@ -326,7 +339,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
     double worst = 0.0;
     for (std::size_t k = 0; k < island.joints.size(); ++k) {
       const Eigen::Vector3d left =
-          violation(joints[island.joints[k]], anchors_now(k).separation) - island.held_back[k];
+          violation(joints[island.joints[k]], anchors_now(k).separation) - island.kept[k];
       island.rows[k].residual = left;
       worst = std::max(worst, left.cwiseAbs().maxCoeff());
     }

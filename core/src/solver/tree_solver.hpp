@@ -8,7 +8,7 @@
 // pass then also projects the positions: with the same factor it solves J dx = -C and moves
 // the bodies by dx (no velocity change). It removes all the drift the step's own motion made,
 // and of a violation already there at the step's start (joints created apart, a body the user
-// moved) at most max_correction_speed * h per row and sub-step. Without it the exact velocities
+// moved) at most max_correction_speed * h per sub-step. Without it the exact velocities
 // still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per sub-step as it
 // cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a joint 0.19 m; with
 // the whole of C bounded, 2.1 cm.
@@ -81,9 +81,11 @@ class TreeSolver {
     std::vector<Eigen::Vector3d> dp;
     // C per joint (padding rows 0) that the relax pass's projection removes, refilled by it
     std::vector<Eigen::Vector3d> error;
-    // Per joint, the C held back for later sub-steps: all of it at the step's start, then
-    // what each projection leaves (it removes that part at max_correction_speed * h).
-    std::vector<Eigen::Vector3d> held_back;
+    // Per joint, how much of its violation (m, violation_size) was there at the step's start
+    // and is still to close: each projection removes at most max_correction_speed * h of it.
+    std::vector<double> held_back;
+    // Per joint, the part of C the last projection left on purpose (of the held-back part).
+    std::vector<Eigen::Vector3d> kept;
     // Per joint, set at the step's start: both anchors turned by their body's step-start
     // orientation, and the step-start offset from body a to body b.
     std::vector<Eigen::Vector3d> anchor_a, anchor_b, offset;
