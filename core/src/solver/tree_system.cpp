@@ -81,6 +81,8 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   joint_rhs_pair_.resize(joints.size());
   body_child_.assign(bodies, kNoChild);
   body_child_side_.assign(bodies, 0);
+  link_e_inverse_.resize(bodies);
+  link_y_.resize(bodies);
   for (const TreeNode& n : order_) {
     if (!n.joint || n.parent < 0) continue;
     const std::uint32_t body = order_[static_cast<std::size_t>(n.parent)].index;
@@ -113,12 +115,84 @@ void invert_body_block(Mat6& b) {
   b.bottomRightCorner<3, 3>() = s_inverse;
 }
 
+// Three doubles of a row of a small block and a zero, in one 256-bit vector (two SSE
+// registers in a build without AVX): a chain link's products in the factor as four-wide
+// multiply-adds of a row by a broadcast scalar. Eigen's fixed-size 3x3 and 6x3 products run
+// two-wide with shuffles here (EIGEN_MAX_ALIGN_BYTES is 16 project-wide). Only inside this
+// file, and every function that takes or returns one is inlined: the compilers' warning that
+// a 32-byte vector argument changes the ABI without AVX (-Wpsabi) does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+using Row3 = double __attribute__((vector_size(32)));
+
+[[gnu::always_inline]] inline Row3 load3(const double* p) {
+  return Row3{p[0], p[1], p[2], 0.0};
+}
+
+// A row of `matrix` (col-major, `stride` between columns).
+[[gnu::always_inline]] inline Row3 row_of(const double* matrix, int row, int stride) {
+  return Row3{matrix[row], matrix[row + stride], matrix[row + 2 * stride], 0.0};
+}
+
+// sum_k a[k] * rows[k], k < 3
+[[gnu::always_inline]] inline Row3 combine(const Row3& a, const Row3* rows) {
+  return a[0] * rows[0] + a[1] * rows[1] + a[2] * rows[2];
+}
+
+// A 3x3 inverse by cofactors, by rows.
+[[gnu::always_inline]] inline void invert(const Row3 (&e)[3], Row3 (&inverse)[3]) {
+  const double c00 = e[1][1] * e[2][2] - e[1][2] * e[2][1];
+  const double c01 = e[1][2] * e[2][0] - e[1][0] * e[2][2];
+  const double c02 = e[1][0] * e[2][1] - e[1][1] * e[2][0];
+  const double c10 = e[0][2] * e[2][1] - e[0][1] * e[2][2];
+  const double c11 = e[0][0] * e[2][2] - e[0][2] * e[2][0];
+  const double c12 = e[0][1] * e[2][0] - e[0][0] * e[2][1];
+  const double c20 = e[0][1] * e[1][2] - e[0][2] * e[1][1];
+  const double c21 = e[0][2] * e[1][0] - e[0][0] * e[1][2];
+  const double c22 = e[0][0] * e[1][1] - e[0][1] * e[1][0];
+  const double s = 1.0 / (e[0][0] * c00 + e[0][1] * c01 + e[0][2] * c02);
+  inverse[0] = Row3{c00, c10, c20, 0.0} * s;
+  inverse[1] = Row3{c01, c11, c21, 0.0} * s;
+  inverse[2] = Row3{c02, c12, c22, 0.0} * s;
+}
+
+// U = W J^T by rows for W = diag(w I, I_w): w times J's linear columns, then I_w times its
+// angular ones.
+[[gnu::always_inline]] inline void times_inverse_mass(double w, const Row3 (&inertia_w)[3],
+                                                      const Jac& jac, Row3 (&u)[6]) {
+  const double* j = jac.data();
+  const Row3 angular[3] = {load3(j + 9), load3(j + 12), load3(j + 15)};
+  for (int k = 0; k < 3; ++k) u[k] = w * load3(j + 3 * k);
+  for (int i = 0; i < 3; ++i) u[3 + i] = combine(inertia_w[i], angular);
+}
+
+// K = J U by rows (J 3x6, U 6x3 by rows).
+[[gnu::always_inline]] inline void jacobian_times(const Jac& jac, const Row3 (&u)[6],
+                                                  Row3 (&k)[3]) {
+  const double* j = jac.data();
+  for (int i = 0; i < 3; ++i) {
+    k[i] = j[i] * u[0] + j[i + 3] * u[1] + j[i + 6] * u[2] + j[i + 9] * u[3] + j[i + 12] * u[4] +
+           j[i + 15] * u[5];
+  }
+}
+
+// The rows of a 3x3 block into a col-major Matrix3d.
+[[gnu::always_inline]] inline void store_rows(const Row3 (&rows)[3], Eigen::Matrix3d& block) {
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) block(i, c) = rows[i][c];
+}
+
+// The rows of a 3x3 block subtracted from a col-major Matrix3d.
+[[gnu::always_inline]] inline void subtract_rows(const Row3 (&rows)[3], Eigen::Matrix3d& block) {
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3; ++c) block(i, c) -= rows[i][c];
+}
+
 }  // namespace
 
 void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
                         const std::vector<TreeJoint>& joints) {
   // The blocks of H; each becomes its reduced block's inverse when its node is eliminated. A
-  // body of many children sums M and their terms; the others start from W = M^-1.
+  // body of many children sums M and their terms; the others keep W = M^-1.
   for (std::size_t b = 0; b < body_block_.size(); ++b) {
     body_block_[b] = inverse_mass[b];
     if (body_child_[b] == kManyChildren) invert_body_block(body_block_[b]);
@@ -132,76 +206,90 @@ void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
     }
     joint_block_[j] = d;
   }
-  const std::size_t n = order_.size();
   // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree.
-  // The factor is a chain of dependent small inverses from the leaves to the root, so its time
-  // is their latency: a body of one child joint (every link of a chain) is eliminated in joint
-  // space, where the chain's dependent work per link is one 3x3 inverse instead of three.
+  const std::size_t n = order_.size();
   for (std::size_t k = 0; k < n; ++k) {
     const TreeNode& node = order_[k];
     if (node.joint) {
+      if (under_link(node)) continue;  // folded with its link (eliminate_link)
       // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
       joint_inverse_[node.index] = joint_block_[node.index].inverse();
       if (node.parent < 0) continue;
       const std::uint32_t body = order_[static_cast<std::size_t>(node.parent)].index;
-      if (body_child_[body] != kManyChildren) continue;         // the body takes D itself
       const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
       const Jac scaled = joint_inverse_[node.index] * jac;
       body_block_[body].noalias() -= jac.transpose() * scaled;
       continue;
     }
+    if (is_link(node)) {
+      eliminate_link(k, joints);
+      continue;
+    }
+    // B = M + sum of J_c^T (-D_c^-1) J_c over the children, positive definite.
     Mat6& inverse = body_block_[node.index];
-    const std::int32_t child = body_child_[node.index];
-    const Jac* parent_jac = nullptr;
-    std::uint32_t parent_joint = 0;
-    if (node.parent >= 0) {
-      parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
-      parent_jac = &joints[parent_joint].jacobian[node.side];  // J_p, 3x6
-    }
-    if (child == kManyChildren) {
-      // B = M + sum of J_c^T (-D_c^-1) J_c over the children, positive definite.
-      invert_body_block(inverse);
-      if (parent_jac == nullptr) continue;
-      Mat63& transfer = body_transfer_[node.index];
-      transfer.noalias() = inverse * parent_jac->transpose();
-      joint_block_[parent_joint].noalias() -= *parent_jac * transfer;
-      continue;
-    }
-    // At most one child c: B = M + J_c^T S J_c with S = -D_c^-1, so by Woodbury
-    //   B^-1 = W - U_c E^-1 U_c^T,  W = M^-1, U_c = W J_c^T, E = J_c U_c - D_c,
-    // and the parent's block loses J_p B^-1 J_p^T = K_pp - K_cp^T E^-1 K_cp with
-    // K_xy = J_x W J_y^T. Only E^-1 waits on the child; W and the K's do not.
-    Eigen::Matrix<double, 6, 3> to_parent;  // U_p = W J_p^T
-    if (parent_jac != nullptr) to_parent.noalias() = inverse * parent_jac->transpose();
-    if (child == kNoChild) {
-      if (parent_jac == nullptr) continue;
-      body_transfer_[node.index] = to_parent;
-      joint_block_[parent_joint].noalias() -= *parent_jac * to_parent;
-      continue;
-    }
-    const auto c = static_cast<std::uint32_t>(child);
-    const Jac& child_jac = joints[c].jacobian[body_child_side_[node.index]];
-    Mat63 to_child;  // U_c
-    to_child.noalias() = inverse * child_jac.transpose();
-    Eigen::Matrix3d e = child_jac * to_child;
-    e -= joint_block_[c];
-    const Eigen::Matrix3d e_inverse = e.inverse();
-    if (parent_jac != nullptr) {
-      Eigen::Matrix3d k_cp;
-      k_cp.noalias() = child_jac * to_parent;
-      Eigen::Matrix3d y;
-      y.noalias() = e_inverse * k_cp;
-      Eigen::Matrix3d k_pp;
-      k_pp.noalias() = *parent_jac * to_parent;
-      k_pp.noalias() -= k_cp.transpose() * y;
-      joint_block_[parent_joint] -= k_pp;
-      Mat63& transfer = body_transfer_[node.index];
-      transfer = to_parent;
-      transfer.noalias() -= to_child * y;
-    }
-    const Mat63 scaled = to_child * e_inverse;
-    inverse.noalias() -= scaled * to_child.transpose();
+    invert_body_block(inverse);
+    if (node.parent < 0) continue;
+    const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+    const Jac& parent_jac = joints[parent_joint].jacobian[node.side];
+    Mat63& transfer = body_transfer_[node.index];
+    transfer.noalias() = inverse * parent_jac.transpose();
+    joint_block_[parent_joint].noalias() -= parent_jac * transfer;
   }
+}
+
+bool TreeSystem::is_link(const TreeNode& node) const {
+  return !node.joint && body_child_[node.index] != kManyChildren;
+}
+
+bool TreeSystem::under_link(const TreeNode& node) const {
+  return node.parent >= 0 && is_link(order_[static_cast<std::size_t>(node.parent)]);
+}
+
+// A chain link: a body b of at most one child joint c, eliminated together with c in joint
+// space. From b's rows, v_b = W (f_b - J_c^T l_c - J_p^T l_p) (W = M^-1, f_b = 0: nothing is
+// folded into a link's body), so c's rows J_c v_b + D_c l_c = r_c give
+//   l_c = -E^-1 (r_c + K_cp l_p),  E = K_cc - D_c,  K_xy = J_x W J_y^T,
+// and the parent joint p's block loses K_pp - K_cp^T y and its right side y^T r_c, with
+// y = E^-1 K_cp: block-tridiagonal elimination along a chain, one dependent 3x3 inverse per
+// link. Kept: E^-1 and y. W is diag(w I, I_w) (the solver's mass record): its zero blocks are
+// not multiplied.
+void TreeSystem::eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints) {
+  const TreeNode& node = order_[k];
+  const Mat6& w_block = body_block_[node.index];
+  const double w = w_block(0, 0);
+  const Row3 inertia_w[3] = {load3(&w_block(3, 3)), load3(&w_block(3, 4)), load3(&w_block(3, 5))};
+  Eigen::Matrix3d* parent_block = nullptr;
+  Row3 u_p[6], k_pp[3];
+  if (node.parent >= 0) {
+    const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+    parent_block = &joint_block_[parent_joint];
+    times_inverse_mass(w, inertia_w, joints[parent_joint].jacobian[node.side], u_p);
+    jacobian_times(joints[parent_joint].jacobian[node.side], u_p, k_pp);
+  }
+  const std::int32_t child = body_child_[node.index];
+  if (child == kNoChild) {
+    if (parent_block != nullptr) subtract_rows(k_pp, *parent_block);
+    return;
+  }
+  const Jac& child_jac =
+      joints[static_cast<std::size_t>(child)].jacobian[body_child_side_[node.index]];
+  Row3 u_c[6], e[3], e_inverse[3];
+  times_inverse_mass(w, inertia_w, child_jac, u_c);
+  jacobian_times(child_jac, u_c, e);
+  const double* child_block = joint_block_[static_cast<std::size_t>(child)].data();
+  for (int i = 0; i < 3; ++i) e[i] -= row_of(child_block, i, 3);
+  invert(e, e_inverse);
+  store_rows(e_inverse, link_e_inverse_[node.index]);
+  if (parent_block == nullptr) return;
+  Row3 k_cp[3], y[3];
+  jacobian_times(child_jac, u_p, k_cp);
+  for (int i = 0; i < 3; ++i) y[i] = combine(e_inverse[i], k_cp);
+  store_rows(y, link_y_[node.index]);
+  Row3 left[3];
+  for (int i = 0; i < 3; ++i) {
+    left[i] = k_pp[i] - (k_cp[0][i] * y[0] + k_cp[1][i] * y[1] + k_cp[2][i] * y[2]);
+  }
+  subtract_rows(left, *parent_block);
 }
 
 template <int Columns>
@@ -220,37 +308,62 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
     for (int r = joints[j].rows; r < 3; ++r) joint_rhs[j].row(r).setZero();
   }
   const std::size_t n = order_.size();
-  for (std::size_t k = 0; k + 1 < n; ++k) {
+  // Leaves first. A link's child joint keeps g = E^-1 r_c in its right side.
+  for (std::size_t k = 0; k < n; ++k) {
     const TreeNode& node = order_[k];
-    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+    const bool root = node.parent < 0;
     if (node.joint) {
+      if (root || under_link(node)) continue;
+      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
       const Jac& jac = joints[node.index].jacobian[node.side];
       const JointColumns scaled = joint_inverse_[node.index] * joint_rhs[node.index];
       body_rhs[parent.index].noalias() -= jac.transpose() * scaled;
-    } else {
-      joint_rhs[parent.index].noalias() -=
+    } else if (is_link(node)) {
+      const std::int32_t child = body_child_[node.index];
+      if (child == kNoChild) continue;
+      JointColumns& r_c = joint_rhs[static_cast<std::size_t>(child)];
+      if (!root) {
+        const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+        joint_rhs[parent_joint].noalias() -= link_y_[node.index].transpose() * r_c;
+      }
+      r_c = link_e_inverse_[node.index] * r_c;
+    } else if (!root) {
+      const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+      joint_rhs[parent_joint].noalias() -=
           body_transfer_[node.index].transpose() * body_rhs[node.index];
     }
   }
   dv.resize(body_block_.size());
   dp.resize(joint_inverse_.size());
-  // The root, then every node from its parent's solution (root first).
-  const TreeNode& root = order_[n - 1];
-  if (root.joint) {
-    dp[root.index].noalias() = joint_inverse_[root.index] * joint_rhs[root.index];
-  } else {
-    dv[root.index].noalias() = body_block_[root.index] * body_rhs[root.index];
-  }
-  for (std::size_t k = n - 1; k-- > 0;) {
+  // Root first: every node from its parent's solution.
+  for (std::size_t k = n; k-- > 0;) {
     const TreeNode& node = order_[k];
-    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+    const bool root = node.parent < 0;
+    const std::uint32_t parent = root ? 0 : order_[static_cast<std::size_t>(node.parent)].index;
     if (node.joint) {
+      if (under_link(node)) continue;  // solved with its link
+      if (root) {
+        dp[node.index].noalias() = joint_inverse_[node.index] * joint_rhs[node.index];
+        continue;
+      }
       const Jac& jac = joints[node.index].jacobian[node.side];
-      const JointColumns rhs = joint_rhs[node.index] - jac * dv[parent.index];
+      const JointColumns rhs = joint_rhs[node.index] - jac * dv[parent];
       dp[node.index].noalias() = joint_inverse_[node.index] * rhs;
+    } else if (is_link(node)) {
+      // l_c = -g - y l_p, then v_b = -W (J_c^T l_c + J_p^T l_p).
+      BodyColumns pushed = BodyColumns::Zero();
+      if (!root) pushed.noalias() += joints[parent].jacobian[node.side].transpose() * dp[parent];
+      const std::int32_t child = body_child_[node.index];
+      if (child != kNoChild) {
+        const auto c = static_cast<std::size_t>(child);
+        dp[c] = -joint_rhs[c];
+        if (!root) dp[c].noalias() -= link_y_[node.index] * dp[parent];
+        pushed.noalias() += joints[c].jacobian[body_child_side_[node.index]].transpose() * dp[c];
+      }
+      dv[node.index].noalias() = -(body_block_[node.index] * pushed);
     } else {
-      const Jac& jac = joints[parent.index].jacobian[node.side];
-      const BodyColumns rhs = body_rhs[node.index] - jac.transpose() * dp[parent.index];
+      BodyColumns rhs = body_rhs[node.index];
+      if (!root) rhs.noalias() -= joints[parent].jacobian[node.side].transpose() * dp[parent];
       dv[node.index].noalias() = body_block_[node.index] * rhs;
     }
   }

@@ -11,6 +11,8 @@
 // no fill: each node's block is reduced by its children's Schur complements and the system is
 // solved in time linear in its rows. Bodies are 6x6 blocks, joints 3x3 (a joint of fewer rows
 // pads its block with -1 on the diagonal and zero Jacobian rows, whose unknowns come out 0).
+// A body of at most one child joint (a chain link) is eliminated together with that joint, in
+// joint space: along a chain the system is block-tridiagonal in the joints' 3x3 blocks.
 //
 // Scalar, double precision, one island at a time in a fixed order: the same bits at every
 // SIMD width and thread count.
@@ -87,10 +89,16 @@ class TreeSystem {
                      std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
                      std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const;
 
+  bool is_link(const TreeNode& node) const;     // a body of at most one child joint
+  bool under_link(const TreeNode& node) const;  // a joint whose parent is such a body
+  void eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints);
+
   std::vector<TreeNode> order_;
-  // Scratch, sized once in build: per body the reduced block, then its inverse, and the
-  // transfer towards its parent joint; per joint the reduced block's inverse; the right sides.
-  // Fixed-size blocks and hand-ordered 3x3 arithmetic (tree_system.cpp says why).
+  // Scratch, sized once in build: per body of many children the reduced block, then its
+  // inverse, and the transfer towards its parent joint (a chain link keeps W = M^-1 and
+  // link_e_inverse_, link_y_ below); per joint the reduced block and, unless it is a link's
+  // child, its inverse; the right sides. Fixed-size blocks and hand-ordered 3x3 arithmetic
+  // (tree_system.cpp says why).
   std::vector<Mat6> body_block_;                            // B, then B^-1 once eliminated
   std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // B^-1 J^T towards the parent
   std::vector<Vec6> body_rhs_;
@@ -100,12 +108,16 @@ class TreeSystem {
   std::vector<Eigen::Vector3d> joint_rhs_;
   std::vector<Vec3x2> joint_rhs_pair_;
   // Per body its one child joint (a chain link), kNoChild (a leaf) or kManyChildren; and the
-  // side of that joint at the body. A body of at most one child is eliminated in joint space
-  // (tree_system.cpp, factor).
+  // side of that joint at the body. A body of at most one child is eliminated with its child
+  // joint in joint space (tree_system.cpp, eliminate_link).
   static constexpr std::int32_t kNoChild = -1;
   static constexpr std::int32_t kManyChildren = -2;
   std::vector<std::int32_t> body_child_;
   std::vector<std::uint8_t> body_child_side_;
+  // Per chain link (a body of at most one child joint; tree_system.cpp, eliminate_link):
+  // E^-1 and y = E^-1 K_cp.
+  std::vector<Eigen::Matrix3d> link_e_inverse_;
+  std::vector<Eigen::Matrix3d> link_y_;
 };
 
 }  // namespace softstep::solver
