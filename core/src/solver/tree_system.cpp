@@ -175,6 +175,20 @@ using Row3 = double __attribute__((vector_size(32)));
   }
 }
 
+[[gnu::always_inline]] inline void store3(double* p, const Row3& r) {
+  p[0] = r[0];
+  p[1] = r[1];
+  p[2] = r[2];
+}
+
+// J^T l added to a body's linear and angular halves (J 3x6 col-major: its row k, split).
+[[gnu::always_inline]] inline void push(const double* jac, const Row3& l, Row3& linear,
+                                        Row3& angular) {
+  linear += l[0] * row_of(jac, 0, 3) + l[1] * row_of(jac, 1, 3) + l[2] * row_of(jac, 2, 3);
+  angular +=
+      l[0] * row_of(jac + 9, 0, 3) + l[1] * row_of(jac + 9, 1, 3) + l[2] * row_of(jac + 9, 2, 3);
+}
+
 // The rows of a 3x3 block into a col-major Matrix3d.
 [[gnu::always_inline]] inline void store_rows(const Row3 (&rows)[3], Eigen::Matrix3d& block) {
   for (int i = 0; i < 3; ++i)
@@ -235,14 +249,6 @@ void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
     transfer.noalias() = inverse * parent_jac.transpose();
     joint_block_[parent_joint].noalias() -= parent_jac * transfer;
   }
-}
-
-bool TreeSystem::is_link(const TreeNode& node) const {
-  return !node.joint && body_child_[node.index] != kManyChildren;
-}
-
-bool TreeSystem::under_link(const TreeNode& node) const {
-  return node.parent >= 0 && is_link(order_[static_cast<std::size_t>(node.parent)]);
 }
 
 // A chain link: a body b of at most one child joint c, eliminated together with c in joint
@@ -321,12 +327,21 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
     } else if (is_link(node)) {
       const std::int32_t child = body_child_[node.index];
       if (child == kNoChild) continue;
-      JointColumns& r_c = joint_rhs[static_cast<std::size_t>(child)];
-      if (!root) {
-        const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
-        joint_rhs[parent_joint].noalias() -= link_y_[node.index].transpose() * r_c;
+      double* r_c = joint_rhs[static_cast<std::size_t>(child)].data();
+      const double* y = link_y_[node.index].data();
+      const double* e_inverse = link_e_inverse_[node.index].data();
+      double* r_p =
+          root ? nullptr : joint_rhs[order_[static_cast<std::size_t>(node.parent)].index].data();
+      for (int column = 0; column < Columns; ++column) {
+        const Row3 r = load3(r_c + 3 * column);
+        if (r_p != nullptr) {
+          const Row3 taken =
+              r[0] * row_of(y, 0, 3) + r[1] * row_of(y, 1, 3) + r[2] * row_of(y, 2, 3);
+          store3(r_p + 3 * column, load3(r_p + 3 * column) - taken);
+        }
+        store3(r_c + 3 * column,
+               r[0] * load3(e_inverse) + r[1] * load3(e_inverse + 3) + r[2] * load3(e_inverse + 6));
       }
-      r_c = link_e_inverse_[node.index] * r_c;
     } else if (!root) {
       const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
       joint_rhs[parent_joint].noalias() -=
@@ -351,16 +366,36 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
       dp[node.index].noalias() = joint_inverse_[node.index] * rhs;
     } else if (is_link(node)) {
       // l_c = -g - y l_p, then v_b = -W (J_c^T l_c + J_p^T l_p).
-      BodyColumns pushed = BodyColumns::Zero();
-      if (!root) pushed.noalias() += joints[parent].jacobian[node.side].transpose() * dp[parent];
       const std::int32_t child = body_child_[node.index];
-      if (child != kNoChild) {
-        const auto c = static_cast<std::size_t>(child);
-        dp[c] = -joint_rhs[c];
-        if (!root) dp[c].noalias() -= link_y_[node.index] * dp[parent];
-        pushed.noalias() += joints[c].jacobian[body_child_side_[node.index]].transpose() * dp[c];
+      const double* jac_p = root ? nullptr : joints[parent].jacobian[node.side].data();
+      const double* jac_c = child == kNoChild ? nullptr
+                                              : joints[static_cast<std::size_t>(child)]
+                                                    .jacobian[body_child_side_[node.index]]
+                                                    .data();
+      const double* y = link_y_[node.index].data();
+      const Mat6& w_block = body_block_[node.index];
+      const double w = w_block(0, 0);
+      const double* inertia_w = &w_block(3, 3);
+      for (int column = 0; column < Columns; ++column) {
+        Row3 linear{0.0, 0.0, 0.0, 0.0}, angular{0.0, 0.0, 0.0, 0.0};
+        Row3 l_p{0.0, 0.0, 0.0, 0.0};
+        if (jac_p != nullptr) {
+          l_p = load3(dp[parent].data() + 3 * column);
+          push(jac_p, l_p, linear, angular);
+        }
+        if (jac_c != nullptr) {
+          double* l_c = dp[static_cast<std::size_t>(child)].data() + 3 * column;
+          Row3 l = -load3(joint_rhs[static_cast<std::size_t>(child)].data() + 3 * column);
+          if (jac_p != nullptr)
+            l -= l_p[0] * load3(y) + l_p[1] * load3(y + 3) + l_p[2] * load3(y + 6);
+          store3(l_c, l);
+          push(jac_c, l, linear, angular);
+        }
+        double* v = dv[node.index].data() + 6 * column;
+        store3(v, -w * linear);
+        store3(v + 3, -(angular[0] * load3(inertia_w) + angular[1] * load3(inertia_w + 6) +
+                        angular[2] * load3(inertia_w + 12)));
       }
-      dv[node.index].noalias() = -(body_block_[node.index] * pushed);
     } else {
       BodyColumns rhs = body_rhs[node.index];
       if (!root) rhs.noalias() -= joints[parent].jacobian[node.side].transpose() * dp[parent];

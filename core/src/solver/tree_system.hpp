@@ -89,8 +89,13 @@ class TreeSystem {
                      std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
                      std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const;
 
-  bool is_link(const TreeNode& node) const;     // a body of at most one child joint
-  bool under_link(const TreeNode& node) const;  // a joint whose parent is such a body
+  // A body of at most one child joint (a chain link), and a joint whose parent is one.
+  bool is_link(const TreeNode& node) const {
+    return !node.joint && body_child_[node.index] != kManyChildren;
+  }
+  bool under_link(const TreeNode& node) const {
+    return node.parent >= 0 && is_link(order_[static_cast<std::size_t>(node.parent)]);
+  }
   void eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints);
 
   std::vector<TreeNode> order_;
