@@ -12,13 +12,18 @@ ExactSolution solve_tree(const SoftSystem& s) {
   // Nodes: the bodies of finite mass.
   const int blocks = static_cast<int>(s.body_slots.size());
   std::vector<std::int32_t> node(static_cast<std::size_t>(blocks), -1);
-  std::vector<solver::Mat6> inverse_mass;
+  std::vector<solver::InverseMass> inverse_mass;
   const Eigen::MatrixXd dense_mass(s.mass);
   for (int b = 0; b < blocks; ++b) {
     const solver::Mat6 m = dense_mass.block<6, 6>(6 * b, 6 * b);
     if (m.isZero(0.0)) continue;  // static or kinematic
     node[static_cast<std::size_t>(b)] = static_cast<std::int32_t>(inverse_mass.size());
-    inverse_mass.push_back(m.inverse());
+    // A rigid body's mass block is diag(m I, I): the tree solve takes its inverse so.
+    const bool rigid_body = m.topRightCorner<3, 3>().isZero(0.0) &&
+                            m.bottomLeftCorner<3, 3>().isZero(0.0) &&
+                            m.topLeftCorner<3, 3>().isApprox(m(0, 0) * Eigen::Matrix3d::Identity());
+    if (!rigid_body) throw std::invalid_argument("solve_tree: a mass block other than diag(m I, I)");
+    inverse_mass.push_back({1.0 / m(0, 0), m.bottomRightCorner<3, 3>().inverse()});
   }
   const Eigen::SparseMatrix<double, Eigen::RowMajor> jac(s.jacobian);
   const Eigen::VectorXd residual = s.jacobian * s.velocity_before + s.bias;

@@ -29,10 +29,14 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   return x;
 }
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& r) {
-  Eigen::Matrix3d s;
-  s << 0.0, -r.z(), r.y(), r.z(), 0.0, -r.x(), -r.y(), r.x(), 0.0;
-  return s;
+// A ball joint's rows against one body, sign [I, -skew(r)] (sign -1 on side a, +1 on side
+// b), entry by entry: Eigen's comma initializer over an identity and a skew matrix was a
+// twelfth of the whip's exact step.
+void fill_ball_rows(double sign, const Eigen::Vector3d& r, Jac& jac) {
+  const double x = sign * r.x(), y = sign * r.y(), z = sign * r.z();
+  jac << sign, 0.0, 0.0, 0.0, z, -y,  //
+      0.0, sign, 0.0, -z, 0.0, x,     //
+      0.0, 0.0, sign, y, -x, 0.0;
 }
 
 Vec6 velocity_of(const simd::VelocityRecord& v) {
@@ -92,8 +96,8 @@ void move_positions(const std::vector<std::uint32_t>& bodies, SolverBodies& sb, 
 void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
                     const Eigen::Vector3d& separation, TreeJoint& t) {
   if (j.type == JointType::Ball) {
-    t.jacobian[0] << -Eigen::Matrix3d::Identity(), skew(r_a);
-    t.jacobian[1] << Eigen::Matrix3d::Identity(), -skew(r_b);
+    fill_ball_rows(-1.0, r_a, t.jacobian[0]);
+    fill_ball_rows(1.0, r_b, t.jacobian[1]);
     return;
   }
   const double length = separation.norm();
@@ -197,9 +201,7 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
       ++counts_.loop_islands;  // a loop through the ground: two joints to static or kinematic
       continue;
     }
-    // W's linear block off its diagonal and its v-w coupling blocks stay zero: each pass
-    // writes only the rest (zeroing 288 bytes per body per pass was a tenth of the gather).
-    island.inverse_mass.assign(island.bodies.size(), Mat6::Zero());
+    island.inverse_mass.resize(island.bodies.size());
     island.dv.resize(island.bodies.size());
     island.dp.resize(island.joints.size());
     island.error.resize(island.joints.size());
@@ -242,11 +244,10 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   // the exact pass and the Gauss-Seidel passes solve with the same masses.
   for (std::size_t b = 0; b < island.bodies.size() && !reuse_factor; ++b) {
     const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
-    Mat6& w = island.inverse_mass[b];
-    w.topLeftCorner<3, 3>().diagonal().setConstant(double(m.inv_mass));
-    w.bottomRightCorner<3, 3>() << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4],
-        m.inv_inertia[3], m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5],
-        m.inv_inertia[2];
+    InverseMass& w = island.inverse_mass[b];
+    w.linear = double(m.inv_mass);
+    w.angular << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
+        m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
   }
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);

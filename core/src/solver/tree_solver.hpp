@@ -76,7 +76,7 @@ class TreeSolver {
     std::vector<std::uint32_t> joints;             // joint slots
     std::vector<std::int32_t> solver_a, solver_b;  // per joint its bodies' solver records
     std::vector<TreeJoint> rows;                   // per joint, refilled each pass
-    std::vector<Mat6> inverse_mass;
+    std::vector<InverseMass> inverse_mass;
     std::vector<Vec6> dv;
     std::vector<Eigen::Vector3d> dp;
     // C per joint (padding rows 0) that the relax pass's projection removes, refilled by it

@@ -203,13 +203,18 @@ using Row3 = double __attribute__((vector_size(32)));
 
 }  // namespace
 
-void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
+void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
                         const std::vector<TreeJoint>& joints) {
   // The blocks of H; each becomes its reduced block's inverse when its node is eliminated. A
-  // body of many children sums M and their terms; the others keep W = M^-1.
+  // body of many children sums M and their terms; a chain link reads W = M^-1.
+  inverse_mass_ = inverse_mass;
   for (std::size_t b = 0; b < body_block_.size(); ++b) {
-    body_block_[b] = inverse_mass[b];
-    if (body_child_[b] == kManyChildren) invert_body_block(body_block_[b]);
+    if (body_child_[b] != kManyChildren) continue;
+    Mat6& block = body_block_[b];
+    block.setZero();
+    block.topLeftCorner<3, 3>().diagonal().setConstant(inverse_mass[b].linear);
+    block.bottomRightCorner<3, 3>() = inverse_mass[b].angular;
+    invert_body_block(block);
   }
   for (std::size_t j = 0; j < joints.size(); ++j) {
     Eigen::Matrix3d d = -joints[j].gamma;
@@ -261,9 +266,11 @@ void TreeSystem::factor(const std::vector<Mat6>& inverse_mass,
 // not multiplied.
 void TreeSystem::eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints) {
   const TreeNode& node = order_[k];
-  const Mat6& w_block = body_block_[node.index];
-  const double w = w_block(0, 0);
-  const Row3 inertia_w[3] = {load3(&w_block(3, 3)), load3(&w_block(3, 4)), load3(&w_block(3, 5))};
+  const InverseMass& mass = inverse_mass_[node.index];
+  const double w = mass.linear;
+  // I_w is symmetric: its rows are its columns.
+  const double* angular = mass.angular.data();
+  const Row3 inertia_w[3] = {load3(angular), load3(angular + 3), load3(angular + 6)};
   Eigen::Matrix3d* parent_block = nullptr;
   Row3 u_p[6], k_pp[3];
   if (node.parent >= 0) {
@@ -373,9 +380,8 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
                                                     .jacobian[body_child_side_[node.index]]
                                                     .data();
       const double* y = link_y_[node.index].data();
-      const Mat6& w_block = body_block_[node.index];
-      const double w = w_block(0, 0);
-      const double* inertia_w = &w_block(3, 3);
+      const double w = inverse_mass_[node.index].linear;
+      const double* inertia_w = inverse_mass_[node.index].angular.data();
       for (int column = 0; column < Columns; ++column) {
         Row3 linear{0.0, 0.0, 0.0, 0.0}, angular{0.0, 0.0, 0.0, 0.0};
         Row3 l_p{0.0, 0.0, 0.0, 0.0};
@@ -393,8 +399,8 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
         }
         double* v = dv[node.index].data() + 6 * column;
         store3(v, -w * linear);
-        store3(v + 3, -(angular[0] * load3(inertia_w) + angular[1] * load3(inertia_w + 6) +
-                        angular[2] * load3(inertia_w + 12)));
+        store3(v + 3, -(angular[0] * load3(inertia_w) + angular[1] * load3(inertia_w + 3) +
+                        angular[2] * load3(inertia_w + 6)));
       }
     } else {
       BodyColumns rhs = body_rhs[node.index];

@@ -30,6 +30,13 @@ using Jac = Eigen::Matrix<double, 3, 6>;  // a joint's rows against one body (v,
 using Vec6x2 = Eigen::Matrix<double, 6, 2>;
 using Vec3x2 = Eigen::Matrix<double, 3, 2>;
 
+// A rigid body's M^-1 = diag(linear I, angular): its inverse mass and its world inverse
+// inertia (symmetric).
+struct InverseMass {
+  double linear = 0.0;
+  Eigen::Matrix3d angular = Eigen::Matrix3d::Zero();
+};
+
 // One joint as the tree solve sees it. body[s] is the island-local index of side s's body,
 // or -1 when that body does not move (static, kinematic): its velocity is already in r.
 struct TreeJoint {
@@ -60,7 +67,7 @@ class TreeSystem {
   // Factors H for these inverse masses (W = M^-1 per body: the solver keeps inverse masses,
   // and a chain link is eliminated with W, tree_system.cpp) and Jacobians and Gammas, leaves
   // first.
-  void factor(const std::vector<Mat6>& inverse_mass, const std::vector<TreeJoint>& joints);
+  void factor(const std::vector<InverseMass>& inverse_mass, const std::vector<TreeJoint>& joints);
   // With the last factor: the velocity change of every body (6 each: v then w) and the
   // impulse change of every joint (3 each; padding rows 0) for the joints' residuals r.
   void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
@@ -72,7 +79,7 @@ class TreeSystem {
   void solve(const std::vector<TreeJoint>& joints, const std::vector<Eigen::Vector3d>& second,
              std::vector<Vec6x2>& dv, std::vector<Vec3x2>& dp);
   // factor, then solve.
-  void solve(const std::vector<Mat6>& inverse_mass, const std::vector<TreeJoint>& joints,
+  void solve(const std::vector<InverseMass>& inverse_mass, const std::vector<TreeJoint>& joints,
              std::vector<Vec6>& dv, std::vector<Eigen::Vector3d>& dp) {
     factor(inverse_mass, joints);
     solve(joints, dv, dp);
@@ -119,8 +126,9 @@ class TreeSystem {
   static constexpr std::int32_t kManyChildren = -2;
   std::vector<std::int32_t> body_child_;
   std::vector<std::uint8_t> body_child_side_;
-  // Per chain link (a body of at most one child joint; tree_system.cpp, eliminate_link):
-  // E^-1 and y = E^-1 K_cp.
+  // The last factor's W per body (a chain link's solve reads it); per chain link (a body of at
+  // most one child joint; tree_system.cpp, eliminate_link): E^-1 and y = E^-1 K_cp.
+  std::vector<InverseMass> inverse_mass_;
   std::vector<Eigen::Matrix3d> link_e_inverse_;
   std::vector<Eigen::Matrix3d> link_y_;
 };
