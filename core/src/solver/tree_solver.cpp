@@ -210,6 +210,7 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
     island.anchor_a.resize(island.joints.size());
     island.anchor_b.resize(island.joints.size());
     island.offset.resize(island.joints.size());
+    island.anchors.resize(island.joints.size());
     for (std::uint32_t j : island.joints) {
       const JointSlot& slot = joints[j];
       island.solver_a.push_back(solver_index(bodies[slot.body_a], slot.body_a));
@@ -266,9 +267,6 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   }
   // Joint k's anchors now, as the kernels see them: the step-start anchors in double, turned
   // by the rotation since.
-  struct Anchors {
-    Eigen::Vector3d r_a, r_b, separation;
-  };
   const auto anchors_now = [&](std::size_t k) {
     const PoseNow pa = pose_now(sb.delta[static_cast<std::size_t>(island.solver_a[k])]);
     const PoseNow pb = pose_now(sb.delta[static_cast<std::size_t>(island.solver_b[k])]);
@@ -276,10 +274,13 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
     n.separation = island.offset[k] + (pb.dp - pa.dp) + (n.r_b - n.r_a);
     return n;
   };
+  // The last relax pass's check measured the joints where the bodies still are.
+  const bool measured = reuse_factor && island.anchors_current;
+  island.anchors_current = false;
   for (std::size_t k = 0; k < island.joints.size(); ++k) {
     const JointSlot& j = joints[island.joints[k]];
     const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
-    const auto [r_a, r_b, separation] = anchors_now(k);
+    const auto [r_a, r_b, separation] = measured ? island.anchors[k] : anchors_now(k);
     const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
     const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
     TreeJoint& t = island.rows[k];
@@ -339,14 +340,18 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
   for (int extra = 0; extra < kMaxExtraProjections; ++extra) {
     double worst = 0.0;
     for (std::size_t k = 0; k < island.joints.size(); ++k) {
+      island.anchors[k] = anchors_now(k);
       const Eigen::Vector3d left =
-          violation(joints[island.joints[k]], anchors_now(k).separation) - island.kept[k];
+          violation(joints[island.joints[k]], island.anchors[k].separation) - island.kept[k];
       island.rows[k].residual = left;
       worst = std::max(worst, left.cwiseAbs().maxCoeff());
     }
-    if (worst <= kProjectionTolerance) return;
+    if (worst <= kProjectionTolerance) {
+      island.anchors_current = true;  // until the bodies move: the next solve pass reads them
+      return;
+    }
     for (std::size_t k = 0; k < island.joints.size(); ++k) {
-      const Anchors now = anchors_now(k);
+      const Anchors& now = island.anchors[k];
       fill_jacobians(joints[island.joints[k]], now.r_a, now.r_b, now.separation, island.rows[k]);
     }
     island.system.factor(island.inverse_mass, island.rows);

@@ -71,6 +71,9 @@ class TreeSolver {
             Pass which, const Share& share);
 
  private:
+  struct Anchors {
+    Eigen::Vector3d r_a, r_b, separation;
+  };
   struct Island {
     std::vector<std::uint32_t> bodies;             // movable body slots (island-local order)
     std::vector<std::uint32_t> joints;             // joint slots
@@ -89,6 +92,11 @@ class TreeSolver {
     // Per joint, set at the step's start: both anchors turned by their body's step-start
     // orientation, and the step-start offset from body a to body b.
     std::vector<Eigen::Vector3d> anchor_a, anchor_b, offset;
+    // Per joint, its anchors turned to where the bodies are and their separation, as the
+    // relax pass's check measured them after its projection; current (anchors_current) until
+    // the bodies move, so that the next sub-step's solve pass does not turn them again.
+    std::vector<Anchors> anchors;
+    bool anchors_current = false;
     std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
     std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
     TreeSystem system;
