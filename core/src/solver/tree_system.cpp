@@ -181,12 +181,13 @@ using Row3 = double __attribute__((vector_size(32)));
   p[2] = r[2];
 }
 
-// J^T l added to a body's linear and angular halves (J 3x6 col-major: its row k, split).
-[[gnu::always_inline]] inline void push(const double* jac, const Row3& l, Row3& linear,
-                                        Row3& angular) {
-  linear += l[0] * row_of(jac, 0, 3) + l[1] * row_of(jac, 1, 3) + l[2] * row_of(jac, 2, 3);
-  angular +=
-      l[0] * row_of(jac + 9, 0, 3) + l[1] * row_of(jac + 9, 1, 3) + l[2] * row_of(jac + 9, 2, 3);
+// J's rows (J 3x6 col-major), each as a linear half (rows[0..2]) and an angular half
+// (rows[3..5]).
+[[gnu::always_inline]] inline void jacobian_rows(const Jac& jac, Row3 (&rows)[6]) {
+  for (int k = 0; k < 3; ++k) {
+    rows[k] = row_of(jac.data(), k, 3);
+    rows[3 + k] = row_of(jac.data() + 9, k, 3);
+  }
 }
 
 // The rows of a 3x3 block into a col-major Matrix3d.
@@ -336,18 +337,16 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
       if (child == kNoChild) continue;
       double* r_c = joint_rhs[static_cast<std::size_t>(child)].data();
       const double* y = link_y_[node.index].data();
-      const double* e_inverse = link_e_inverse_[node.index].data();
+      const double* e = link_e_inverse_[node.index].data();
+      // Loaded once for every right side: the stores below may alias them for the compiler.
+      const Row3 y_rows[3] = {row_of(y, 0, 3), row_of(y, 1, 3), row_of(y, 2, 3)};
+      const Row3 e_columns[3] = {load3(e), load3(e + 3), load3(e + 6)};
       double* r_p =
           root ? nullptr : joint_rhs[order_[static_cast<std::size_t>(node.parent)].index].data();
       for (int column = 0; column < Columns; ++column) {
         const Row3 r = load3(r_c + 3 * column);
-        if (r_p != nullptr) {
-          const Row3 taken =
-              r[0] * row_of(y, 0, 3) + r[1] * row_of(y, 1, 3) + r[2] * row_of(y, 2, 3);
-          store3(r_p + 3 * column, load3(r_p + 3 * column) - taken);
-        }
-        store3(r_c + 3 * column,
-               r[0] * load3(e_inverse) + r[1] * load3(e_inverse + 3) + r[2] * load3(e_inverse + 6));
+        if (r_p != nullptr) store3(r_p + 3 * column, load3(r_p + 3 * column) - combine(r, y_rows));
+        store3(r_c + 3 * column, combine(r, e_columns));
       }
     } else if (!root) {
       const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
@@ -374,33 +373,37 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
     } else if (is_link(node)) {
       // l_c = -g - y l_p, then v_b = -W (J_c^T l_c + J_p^T l_p).
       const std::int32_t child = body_child_[node.index];
-      const double* jac_p = root ? nullptr : joints[parent].jacobian[node.side].data();
-      const double* jac_c = child == kNoChild ? nullptr
-                                              : joints[static_cast<std::size_t>(child)]
-                                                    .jacobian[body_child_side_[node.index]]
-                                                    .data();
-      const double* y = link_y_[node.index].data();
+      const bool has_child = child != kNoChild;
+      const auto c = static_cast<std::size_t>(child);
+      // J^T l = sum_k l[k] (row k of J), each row in a linear and an angular half; loaded
+      // once for every right side.
+      Row3 parent_rows[6] = {}, child_rows[6] = {}, y_columns[3] = {};
+      if (!root) jacobian_rows(joints[parent].jacobian[node.side], parent_rows);
+      if (has_child) {
+        jacobian_rows(joints[c].jacobian[body_child_side_[node.index]], child_rows);
+        const double* y = link_y_[node.index].data();
+        for (int i = 0; i < 3; ++i) y_columns[i] = load3(y + 3 * i);
+      }
       const double w = inverse_mass_[node.index].linear;
-      const double* inertia_w = inverse_mass_[node.index].angular.data();
+      const double* inertia = inverse_mass_[node.index].angular.data();
+      const Row3 inertia_columns[3] = {load3(inertia), load3(inertia + 3), load3(inertia + 6)};
       for (int column = 0; column < Columns; ++column) {
-        Row3 linear{0.0, 0.0, 0.0, 0.0}, angular{0.0, 0.0, 0.0, 0.0};
-        Row3 l_p{0.0, 0.0, 0.0, 0.0};
-        if (jac_p != nullptr) {
+        Row3 linear{}, angular{}, l_p{};
+        if (!root) {
           l_p = load3(dp[parent].data() + 3 * column);
-          push(jac_p, l_p, linear, angular);
+          linear += combine(l_p, parent_rows);
+          angular += combine(l_p, parent_rows + 3);
         }
-        if (jac_c != nullptr) {
-          double* l_c = dp[static_cast<std::size_t>(child)].data() + 3 * column;
-          Row3 l = -load3(joint_rhs[static_cast<std::size_t>(child)].data() + 3 * column);
-          if (jac_p != nullptr)
-            l -= l_p[0] * load3(y) + l_p[1] * load3(y + 3) + l_p[2] * load3(y + 6);
-          store3(l_c, l);
-          push(jac_c, l, linear, angular);
+        if (has_child) {
+          Row3 l = -load3(joint_rhs[c].data() + 3 * column);
+          if (!root) l -= combine(l_p, y_columns);
+          store3(dp[c].data() + 3 * column, l);
+          linear += combine(l, child_rows);
+          angular += combine(l, child_rows + 3);
         }
         double* v = dv[node.index].data() + 6 * column;
         store3(v, -w * linear);
-        store3(v + 3, -(angular[0] * load3(inertia_w) + angular[1] * load3(inertia_w + 3) +
-                        angular[2] * load3(inertia_w + 6)));
+        store3(v + 3, -combine(angular, inertia_columns));
       }
     } else {
       BodyColumns rhs = body_rhs[node.index];
