@@ -131,6 +131,51 @@ TEST(TreeSolve, EqualsTheEigenReferenceOnABranchedTree) {
   }
 }
 
+// A chain tied to nothing: its root is its first body, a chain link with a child and no parent
+// joint (the pinned chains' root is the pin's joint), and every third joint a one-row
+// distance joint (padding rows inside the links' joint-space elimination).
+TEST(TreeSolve, EqualsTheEigenReferenceOnAFloatingChain) {
+  WorldSettings settings;
+  settings.substeps = 1;
+  World world(settings);
+  world.set_solve_capture(true);
+  BodyId previous{};
+  for (int k = 0; k < 60; ++k) {
+    BodyDef link;
+    link.mass = 1.0 + 0.1 * (k % 7);
+    link.inertia = solid_sphere_inertia(link.mass, 0.1);
+    link.position = {0.25 * k, 0.02 * (k % 3), 0.0};
+    link.linear_velocity = {0.0, 0.5 * std::sin(0.3 * k), 0.1};
+    link.angular_velocity = {0.2, -0.1 * (k % 5), 0.3};
+    const BodyId body = world.create_body(link);
+    if (k > 0) {
+      if (k % 3 == 0) {
+        DistanceJointDef j;
+        j.body_a = previous;
+        j.body_b = body;
+        j.local_anchor_a = {0.125, 0.0, 0.0};
+        j.local_anchor_b = {-0.1, 0.0, 0.0};
+        j.rest_length = 0.03;
+        world.create_distance_joint(j);
+      } else {
+        BallJointDef j;
+        j.body_a = previous;
+        j.body_b = body;
+        j.local_anchor_a = {0.125, 0.0, 0.0};
+        j.local_anchor_b = {-0.125, 0.0, 0.0};
+        world.create_ball_joint(j);
+      }
+    }
+    previous = body;
+  }
+  world.step(kDt);
+  expect_tree_solve_matches_reference(world);
+  settings.solver = SolverMode::DirectForTrees;
+  world.set_settings(settings);
+  EXPECT_EQ(world.step_plan().tree_islands, 1u);
+  EXPECT_EQ(world.step_plan().tree_joints, 59u);
+}
+
 // Every body's pose and velocity, bit for bit.
 std::vector<double> body_states(const World& world) {
   std::vector<double> out;

@@ -1,9 +1,11 @@
 // The exact mode's tree solve alone (core/src/solver/tree_system.hpp): the factor, a solve of
 // one right side (the solve pass) and of two (the relax pass: velocities and position
 // projection together) on a chain of ball joints hanging from the world, 1,000 and 10,000
-// links. The figure to read is ns_per_row: time per constraint row (3 per ball joint) for one
-// factor or one solve. Double precision and scalar code, the same at every SIMD width: the
-// chain's elimination is a sequence of dependent 3x3 steps, link after link.
+// links. The figure to read is ns_per_row: CPU time per constraint row (3 per ball joint) for
+// one factor or one solve, the same system again and again (hot in cache as far as it fits:
+// 1,000 links do, 10,000 mostly not). Chains only: every body is a chain link, so the path of a
+// body of many children (a ragdoll's torso) is not in these figures. Double precision, the
+// same at every SIMD width: the chain's elimination is a sequence of dependent 3x3 steps.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>

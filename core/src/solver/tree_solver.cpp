@@ -237,7 +237,7 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
                               const std::vector<BodySlot>& bodies, SolverBodies& sb,
                               LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which) {
   const bool with_bias = which.with_bias;
-  // A solve pass may reuse the factor of the last sub-step's relax pass (pass() says when):
+  // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
   // the bodies have moved only by the position projection since.
   const bool reuse_factor = with_bias && which.reuse_relax_factor && island.relax_factored;
   island.relax_factored = !with_bias;

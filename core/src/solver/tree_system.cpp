@@ -101,7 +101,8 @@ using Mat63 = Eigen::Matrix<double, 6, 3>;
 // m I plus what child joints add, D the inertia plus theirs, both positive definite, so is
 // the Schur complement S = D - C^T A^-1 C. Two 3x3 inverses (cofactors) and four 3x3 products,
 // all fixed-size and inlined: Eigen's LLT<Mat6> ran its factor and its triangular solves
-// through the dynamic-size kernels, half of the exact pass's time (perf, the 1,000-link whip).
+// through the dynamic-size kernels, half of the exact pass's time (perf, the 1,000-link whip,
+// when its links were eliminated here too; now only bodies of many children are).
 // Same pivot order as a Cholesky of B (linear rows first).
 void invert_body_block(Mat6& b) {
   const Eigen::Matrix3d a_inverse = b.topLeftCorner<3, 3>().inverse();
@@ -116,11 +117,13 @@ void invert_body_block(Mat6& b) {
 }
 
 // Three doubles of a row of a small block and a zero, in one 256-bit vector (two SSE
-// registers in a build without AVX): a chain link's products in the factor as four-wide
-// multiply-adds of a row by a broadcast scalar. Eigen's fixed-size 3x3 and 6x3 products run
-// two-wide with shuffles here (EIGEN_MAX_ALIGN_BYTES is 16 project-wide). Only inside this
-// file, and every function that takes or returns one is inlined: the compilers' warning that
-// a 32-byte vector argument changes the ABI without AVX (-Wpsabi) does not apply.
+// registers in a build without AVX): a chain link's products, in the factor and in the solve,
+// as multiply-adds of a row by a broadcast scalar, four-wide with AVX. Eigen's fixed-size 3x3
+// and 6x3 products run two-wide with shuffles here (EIGEN_MAX_ALIGN_BYTES is 16 project-wide).
+// The compilers warn (-Wpsabi) that passing or returning a 32-byte vector without AVX changes
+// the calling convention, gcc at the functions below and clang at their calls in factor and
+// the solve; every such function here has internal linkage, so no other object file calls it
+// with another convention, and the warning is off for the rest of this file.
 #pragma GCC diagnostic ignored "-Wpsabi"
 using Row3 = double __attribute__((vector_size(32)));
 
@@ -258,13 +261,15 @@ void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
 }
 
 // A chain link: a body b of at most one child joint c, eliminated together with c in joint
-// space. From b's rows, v_b = W (f_b - J_c^T l_c - J_p^T l_p) (W = M^-1, f_b = 0: nothing is
-// folded into a link's body), so c's rows J_c v_b + D_c l_c = r_c give
-//   l_c = -E^-1 (r_c + K_cp l_p),  E = K_cc - D_c,  K_xy = J_x W J_y^T,
-// and the parent joint p's block loses K_pp - K_cp^T y and its right side y^T r_c, with
-// y = E^-1 K_cp: block-tridiagonal elimination along a chain, one dependent 3x3 inverse per
-// link. Kept: E^-1 and y. W is diag(w I, I_w) (the solver's mass record): its zero blocks are
-// not multiplied.
+// space. From b's rows, v_b = W (f_b - J_c^T l_c - J_p^T l_p) (W = M^-1; f_b = 0: a body's right
+// side starts at 0 and only a joint under a body of many children adds to it), so c's rows
+// J_c v_b + D_c l_c = s_c (s_c: c's right side -r_c, already reduced by c's own child) give
+//   l_c = -E^-1 (s_c + K_cp l_p),  E = K_cc - D_c,  K_xy = J_x W J_y^T,
+// and the parent joint p's block loses K_pp - K_cp^T y and its right side y^T s_c, with
+// y = E^-1 K_cp (y^T = K_pc E^-1 because E is symmetric: Gamma and I_w are): block-tridiagonal
+// elimination along a chain, one dependent 3x3 inverse per link. Kept: E^-1 and, below a
+// parent, y. W is diag(w I, I_w) (the solver's mass record): its zero blocks are not
+// multiplied.
 void TreeSystem::eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints) {
   const TreeNode& node = order_[k];
   const InverseMass& mass = inverse_mass_[node.index];
@@ -336,10 +341,14 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
       const std::int32_t child = body_child_[node.index];
       if (child == kNoChild) continue;
       double* r_c = joint_rhs[static_cast<std::size_t>(child)].data();
-      const double* y = link_y_[node.index].data();
       const double* e = link_e_inverse_[node.index].data();
       // Loaded once for every right side: the stores below may alias them for the compiler.
-      const Row3 y_rows[3] = {row_of(y, 0, 3), row_of(y, 1, 3), row_of(y, 2, 3)};
+      // A root link has no y (eliminate_link).
+      Row3 y_rows[3] = {};
+      if (!root) {
+        const double* y = link_y_[node.index].data();
+        for (int i = 0; i < 3; ++i) y_rows[i] = row_of(y, i, 3);
+      }
       const Row3 e_columns[3] = {load3(e), load3(e + 3), load3(e + 6)};
       double* r_p =
           root ? nullptr : joint_rhs[order_[static_cast<std::size_t>(node.parent)].index].data();
@@ -381,6 +390,8 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
       if (!root) jacobian_rows(joints[parent].jacobian[node.side], parent_rows);
       if (has_child) {
         jacobian_rows(joints[c].jacobian[body_child_side_[node.index]], child_rows);
+      }
+      if (has_child && !root) {
         const double* y = link_y_[node.index].data();
         for (int i = 0; i < 3; ++i) y_columns[i] = load3(y + 3 * i);
       }

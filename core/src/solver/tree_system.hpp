@@ -12,10 +12,12 @@
 // solved in time linear in its rows. Bodies are 6x6 blocks, joints 3x3 (a joint of fewer rows
 // pads its block with -1 on the diagonal and zero Jacobian rows, whose unknowns come out 0).
 // A body of at most one child joint (a chain link) is eliminated together with that joint, in
-// joint space: along a chain the system is block-tridiagonal in the joints' 3x3 blocks.
+// joint space: along a chain the system is block-tridiagonal in the joints' 3x3 blocks, and a
+// link has no 6x6 block of its own.
 //
-// Scalar, double precision, one island at a time in a fixed order: the same bits at every
-// SIMD width and thread count.
+// Double precision (a link's products on rows of three doubles, tree_system.cpp), one island
+// at a time in a fixed order, outside the kernels' width dispatch: the same bits at every SIMD
+// width and thread count.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,7 +33,7 @@ using Vec6x2 = Eigen::Matrix<double, 6, 2>;
 using Vec3x2 = Eigen::Matrix<double, 3, 2>;
 
 // A rigid body's M^-1 = diag(linear I, angular): its inverse mass and its world inverse
-// inertia (symmetric).
+// inertia, symmetric (a chain link reads its rows as its columns).
 struct InverseMass {
   double linear = 0.0;
   Eigen::Matrix3d angular = Eigen::Matrix3d::Zero();
@@ -43,7 +45,7 @@ struct TreeJoint {
   std::int32_t body[2] = {-1, -1};
   int rows = 3;                                   // 1..3; rows beyond are padding
   Jac jacobian[2] = {Jac::Zero(), Jac::Zero()};  // per side
-  Eigen::Matrix3d gamma = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d gamma = Eigen::Matrix3d::Zero();     // symmetric (a chain link relies on it)
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();  // r = J v + bias + Gamma P
 };
 
@@ -107,10 +109,10 @@ class TreeSystem {
 
   std::vector<TreeNode> order_;
   // Scratch, sized once in build: per body of many children the reduced block, then its
-  // inverse, and the transfer towards its parent joint (a chain link keeps W = M^-1 and
-  // link_e_inverse_, link_y_ below); per joint the reduced block and, unless it is a link's
-  // child, its inverse; the right sides. Fixed-size blocks and hand-ordered 3x3 arithmetic
-  // (tree_system.cpp says why).
+  // inverse, and the transfer towards its parent joint (sized for every body; a chain link
+  // uses inverse_mass_, link_e_inverse_ and link_y_ below instead); per joint the reduced block
+  // and, unless it is a link's child, its inverse; the right sides. Fixed-size blocks and
+  // hand-ordered 3x3 arithmetic (tree_system.cpp says why).
   std::vector<Mat6> body_block_;                            // B, then B^-1 once eliminated
   std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // B^-1 J^T towards the parent
   std::vector<Vec6> body_rhs_;
