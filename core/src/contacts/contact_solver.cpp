@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "contacts/contact_kernels.hpp"
+#include "solver/four_doubles.hpp"
 #include "solver/team.hpp"
 #include "world_impl.hpp"
 
@@ -134,14 +135,10 @@ void put3(float (&dst)[3][W], int lane, const Eigen::Vector3d& v) {
 
 // One double per contact point of a manifold: the point loop's geometry runs on all of them at
 // once instead of calling Eigen's quaternion product (out of line here) once per anchor. Each
-// lane does the scalar formula's operations in the same order, and the project compiles
-// without contraction (-ffp-contract=off), so every lane holds the bits the scalar code gave
-// (the contact golden hashes and the pyramid's state hash are unchanged). The pack took 3-11 %
-// less time for it (alternated by step in one process, 2026-11-26).
-// -Wpsabi: as in tree_system.cpp, a 32-byte vector passed or returned without AVX changes the
-// calling convention; these functions have internal linkage, so nothing outside calls them.
-#pragma GCC diagnostic ignored "-Wpsabi"
-using PointLanes = double __attribute__((vector_size(32)));
+// lane does the scalar formula's operations in the same order, so every lane holds the bits
+// the scalar code gave (the contact golden hashes and the pyramid's state hash are unchanged).
+// The pack took 3-11 % less time for it (alternated by step in one process, 2026-11-26).
+using PointLanes = FourDoubles;
 static_assert(kMaxContactPoints == 4, "one lane per point");
 
 struct PointVectors {

@@ -2,6 +2,8 @@
 
 #include <Eigen/LU>
 
+#include "solver/four_doubles.hpp"
+
 namespace softstep::solver {
 
 bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joints) {
@@ -116,20 +118,10 @@ void invert_body_block(Mat6& b) {
   b.bottomRightCorner<3, 3>() = s_inverse;
 }
 
-// Three doubles of a row of a small block and a zero, in one 256-bit vector (two SSE
-// registers in a build without AVX): a chain link's products, in the factor and in the solve,
-// as multiply-adds of a row by a broadcast scalar, four-wide with AVX. Eigen's fixed-size 3x3
-// and 6x3 products run two-wide with shuffles here (EIGEN_MAX_ALIGN_BYTES is 16 project-wide).
-// The compilers warn (-Wpsabi) that passing or returning a 32-byte vector without AVX changes
-// the calling convention, gcc at the functions below and clang at their calls in factor and
-// the solve; every such function here has internal linkage, so no other object file calls it
-// with another convention, and the warning is off for the rest of this file.
-#pragma GCC diagnostic ignored "-Wpsabi"
-using Row3 = double __attribute__((vector_size(32)));
-
-[[gnu::always_inline]] inline Row3 load3(const double* p) {
-  return Row3{p[0], p[1], p[2], 0.0};
-}
+// A chain link's products, in the factor and in the solve, as multiply-adds of a row of three
+// doubles (and a zero) by a broadcast scalar, four-wide with AVX. Eigen's fixed-size 3x3 and
+// 6x3 products run two-wide with shuffles here (EIGEN_MAX_ALIGN_BYTES is 16 project-wide).
+using Row3 = FourDoubles;
 
 // A row of `matrix` (col-major, `stride` between columns).
 [[gnu::always_inline]] inline Row3 row_of(const double* matrix, int row, int stride) {
@@ -176,12 +168,6 @@ using Row3 = double __attribute__((vector_size(32)));
     k[i] = j[i] * u[0] + j[i + 3] * u[1] + j[i + 6] * u[2] + j[i + 9] * u[3] + j[i + 12] * u[4] +
            j[i + 15] * u[5];
   }
-}
-
-[[gnu::always_inline]] inline void store3(double* p, const Row3& r) {
-  p[0] = r[0];
-  p[1] = r[1];
-  p[2] = r[2];
 }
 
 // J's rows (J 3x6 col-major), each as a linear half (rows[0..2]) and an angular half

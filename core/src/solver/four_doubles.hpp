@@ -1,0 +1,40 @@
+// Four doubles in one 256-bit GCC vector (two SSE registers in a build without AVX), for the
+// small double-precision arithmetic outside the kernels' lanes: the rows of a tree joint's 3x3
+// and 3x6 blocks (three doubles and a zero) and a contact manifold's four points. Each element
+// takes the operations written, in that order: with -ffp-contract=off (project-wide) a vector
+// expression gives the bits its scalar spelling would.
+#pragma once
+
+// Passing or returning a 32-byte vector without AVX changes the calling convention, and gcc
+// and clang warn (-Wpsabi) wherever one crosses a function boundary. Every function that takes
+// or returns one has internal linkage (an anonymous namespace or inline in this header), so no
+// two object files call each other with different conventions; the warning is off in the
+// files that include this one.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+#include <Eigen/Core>
+
+namespace softstep {
+
+using FourDoubles = double __attribute__((vector_size(32)));
+
+// p[0..2] and a zero.
+[[gnu::always_inline]] inline FourDoubles load3(const double* p) {
+  return FourDoubles{p[0], p[1], p[2], 0.0};
+}
+
+[[gnu::always_inline]] inline void store3(double* p, const FourDoubles& r) {
+  p[0] = r[0];
+  p[1] = r[1];
+  p[2] = r[2];
+}
+
+// M v for a column-major 3x6 M: its columns scaled by v and summed in column order.
+[[gnu::always_inline]] inline FourDoubles times_vector(const Eigen::Matrix<double, 3, 6>& m,
+                                                       const Eigen::Matrix<double, 6, 1>& v) {
+  const double* c = m.data();
+  return load3(c) * v[0] + load3(c + 3) * v[1] + load3(c + 6) * v[2] + load3(c + 9) * v[3] +
+         load3(c + 12) * v[4] + load3(c + 15) * v[5];
+}
+
+}  // namespace softstep
