@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "solver/four_doubles.hpp"
 #include "world_impl.hpp"
 
 namespace softstep::solver {
@@ -74,21 +75,24 @@ double violation_size(const JointSlot& j, const Eigen::Vector3d& separation) {
 
 // Moves the bodies' deltas by dx_of(b) (linear, then a first-order turn), not their
 // velocities: the relax pass's position projection.
+// The turn is q + (0, dw / 2) q, normalized, spelt out on the four coefficients (x, y, z, w as
+// the record stores them): through Eigen's quaternion product and normalize() this loop was a
+// third of the exact relax pass's own work (perf, the 1,000-link whip).
 template <class Dx>
 void move_positions(const std::vector<std::uint32_t>& bodies, SolverBodies& sb, Dx dx_of) {
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     simd::DeltaRecord& d = sb.delta[bodies[b] + 1];
     const Vec6 dx = dx_of(b);
     for (int k = 0; k < 3; ++k) d.dp[k] = static_cast<float>(double(d.dp[k]) + dx[k]);
-    const Eigen::Quaterniond q(d.dq[3], d.dq[0], d.dq[1], d.dq[2]);
-    const Eigen::Quaterniond turn(0.0, 0.5 * dx[3], 0.5 * dx[4], 0.5 * dx[5]);
-    Eigen::Quaterniond moved = q;
-    moved.coeffs() += (turn * q).coeffs();
-    moved.normalize();
-    d.dq[0] = static_cast<float>(moved.x());
-    d.dq[1] = static_cast<float>(moved.y());
-    d.dq[2] = static_cast<float>(moved.z());
-    d.dq[3] = static_cast<float>(moved.w());
+    const double x = d.dq[0], y = d.dq[1], z = d.dq[2], w = d.dq[3];
+    const double tx = 0.5 * dx[3], ty = 0.5 * dx[4], tz = 0.5 * dx[5];
+    const FourDoubles moved = {x + (tx * w + (ty * z - tz * y)), y + (ty * w + (tz * x - tx * z)),
+                               z + (tz * w + (tx * y - ty * x)),
+                               w - (tx * x + ty * y + tz * z)};
+    const FourDoubles squares = moved * moved;
+    const FourDoubles unit =
+        moved / std::sqrt((squares[0] + squares[1]) + (squares[2] + squares[3]));
+    for (int k = 0; k < 4; ++k) d.dq[k] = static_cast<float>(unit[k]);
   }
 }
 
@@ -305,7 +309,8 @@ void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& join
       held = std::max(held - step, 0.0);
     }
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
-    t.residual = t.jacobian[0] * va + t.jacobian[1] * vb + bias;
+    store3(t.residual.data(),
+           times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb) + load3(bias.data()));
   }
   if (!reuse_factor) island.system.factor(island.inverse_mass, island.rows);
   if (with_bias) {
