@@ -87,8 +87,7 @@ void move_positions(const std::vector<std::uint32_t>& bodies, SolverBodies& sb, 
     const double x = d.dq[0], y = d.dq[1], z = d.dq[2], w = d.dq[3];
     const double tx = 0.5 * dx[3], ty = 0.5 * dx[4], tz = 0.5 * dx[5];
     const FourDoubles moved = {x + (tx * w + (ty * z - tz * y)), y + (ty * w + (tz * x - tx * z)),
-                               z + (tz * w + (tx * y - ty * x)),
-                               w - (tx * x + ty * y + tz * z)};
+                               z + (tz * w + (tx * y - ty * x)), w - (tx * x + ty * y + tz * z)};
     const FourDoubles squares = moved * moved;
     const FourDoubles unit =
         moved / std::sqrt((squares[0] + squares[1]) + (squares[2] + squares[3]));
