@@ -139,24 +139,11 @@ void put3(float (&dst)[3][W], int lane, const Eigen::Vector3d& v) {
 // the scalar code gave (the contact golden hashes and the pyramid's state hash are unchanged).
 // The pack took 3-11 % less time for it (alternated by step in one process, 2026-11-26).
 using PointLanes = FourDoubles;
+using PointVectors = FourVectors;
 static_assert(kMaxContactPoints == 4, "one lane per point");
 
-struct PointVectors {
-  PointLanes x, y, z;
-};
-
-// q v for every point, as Eigen's Quaternion::_transformVector: uv = 2 (q.vec x v), then
-// v + w uv + q.vec x uv.
 PointVectors rotate(const Eigen::Quaterniond& q, const PointVectors& v) {
-  const double qx = q.x(), qy = q.y(), qz = q.z(), qw = q.w();
-  PointLanes ux = qy * v.z - qz * v.y;
-  PointLanes uy = qz * v.x - qx * v.z;
-  PointLanes uz = qx * v.y - qy * v.x;
-  ux += ux;
-  uy += uy;
-  uz += uz;
-  return {v.x + qw * ux + (qy * uz - qz * uy), v.y + qw * uy + (qz * ux - qx * uz),
-          v.z + qw * uz + (qx * uy - qy * ux)};
+  return rotate(q.x(), q.y(), q.z(), q.w(), v);
 }
 
 // A round shape's surface point, core + offset * n (offset = radius_a for A, -radius_b for B);

@@ -1,6 +1,7 @@
 // Four doubles in one 256-bit GCC vector (two SSE registers in a build without AVX), for the
 // small double-precision arithmetic outside the kernels' lanes: the rows of a tree joint's 3x3
-// and 3x6 blocks (three doubles and a zero) and a contact manifold's four points. Each element
+// and 3x6 blocks (three doubles and a zero), a contact manifold's four points, and the anchors
+// of four joints of a lane group. Each element
 // takes the operations written, in that order: with -ffp-contract=off (project-wide) a vector
 // expression gives the bits its scalar spelling would.
 #pragma once
@@ -35,6 +36,28 @@ using FourDoubles = double __attribute__((vector_size(32)));
   const double* c = m.data();
   return load3(c) * v[0] + load3(c + 3) * v[1] + load3(c + 6) * v[2] + load3(c + 9) * v[3] +
          load3(c + 12) * v[4] + load3(c + 15) * v[5];
+}
+
+// Three vectors' x, y and z, one vector per lane.
+struct FourVectors {
+  FourDoubles x, y, z;
+};
+
+// q v in every lane, as Eigen's Quaternion::_transformVector: uv = 2 (q.vec x v), then
+// v + w uv + q.vec x uv. Q is double (one quaternion turns every lane's vector: a contact
+// manifold's points) or FourDoubles (a quaternion per lane: four joints' bodies); either way
+// each lane holds the bits Eigen's scalar product gives.
+template <class Q>
+[[gnu::always_inline]] inline FourVectors rotate(const Q& qx, const Q& qy, const Q& qz, const Q& qw,
+                                                 const FourVectors& v) {
+  FourDoubles ux = qy * v.z - qz * v.y;
+  FourDoubles uy = qz * v.x - qx * v.z;
+  FourDoubles uz = qx * v.y - qy * v.x;
+  ux += ux;
+  uy += uy;
+  uz += uz;
+  return {v.x + qw * ux + (qy * uz - qz * uy), v.y + qw * uy + (qz * ux - qx * uz),
+          v.z + qw * uz + (qx * uy - qy * ux)};
 }
 
 }  // namespace softstep

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "solver/four_doubles.hpp"
 #include "solver/joint_batches.hpp"
 #include "solver/team.hpp"
 #include "world_impl.hpp"
@@ -47,20 +48,63 @@ void fill_common_lane(simd::AnchorLanes<W>& g, int lane, std::uint32_t slot, con
   g.body_b[lane] = solver_index(bodies[j.body_b], j.body_b);
 }
 
-// World-frame anchors and centre offset at the step start, from the double-precision poses:
-// far from the origin a float position has mm-sized steps, a float difference does not.
+// World-frame anchors and centre offset at the step start of a group's joints, from the
+// double-precision poses (far from the origin a float position has mm-sized steps, a float
+// difference does not), four lanes at a time with a quaternion per lane: Eigen's quaternion
+// product, called per anchor, went through the stack between two halves of its cross products
+// and stalled on the reload (perf, the 100 x 100 grid's prepare). Each lane does Eigen's
+// operations in order (four_doubles.hpp), so the lanes get the bits they had.
 template <int W>
-void write_anchors(simd::AnchorLanes<W>& g, int lane, const JointSlot& j,
+void write_anchors(simd::AnchorLanes<W>& g, const std::vector<JointSlot>& joints,
                    const std::vector<BodySlot>& bodies) {
-  const BodySlot& a = bodies[j.body_a];
-  const BodySlot& b = bodies[j.body_b];
-  const Eigen::Vector3d r_a = a.orientation * j.local_anchor_a;
-  const Eigen::Vector3d r_b = b.orientation * j.local_anchor_b;
-  const Eigen::Vector3d center_delta = b.position - a.position;
-  for (int k = 0; k < 3; ++k) {
-    g.r_a[k][lane] = static_cast<float>(r_a[k]);
-    g.r_b[k][lane] = static_cast<float>(r_b[k]);
-    g.center_delta[k][lane] = static_cast<float>(center_delta[k]);
+  for (int first = 0; first < W; first += 4) {
+    const int count = std::min(4, W - first);
+    // A lane without a joint (padding, or past the group's width) repeats a real one; only
+    // real lanes are stored.
+    int real = -1;
+    for (int l = 0; l < count; ++l) {
+      if (g.id[first + l] != kPadding) real = l;
+    }
+    if (real < 0) continue;
+    const JointSlot* j[4];
+    const BodySlot* a[4];
+    const BodySlot* b[4];
+    for (int l = 0; l < 4; ++l) {
+      const bool own = l < count && g.id[first + l] != kPadding;
+      j[l] = &joints[g.id[first + (own ? l : real)]];
+      a[l] = &bodies[j[l]->body_a];
+      b[l] = &bodies[j[l]->body_b];
+    }
+    // One field of the four lanes' joints or bodies as a vector.
+    const auto lanes = [](const auto& get) { return FourDoubles{get(0), get(1), get(2), get(3)}; };
+    const auto vectors = [&](const auto& vector_of) {
+      return FourVectors{lanes([&](int l) { return vector_of(l).x(); }),
+                         lanes([&](int l) { return vector_of(l).y(); }),
+                         lanes([&](int l) { return vector_of(l).z(); })};
+    };
+    const auto turned = [&](const BodySlot* const(&body)[4], const FourVectors& local) {
+      return rotate(lanes([&](int l) { return body[l]->orientation.x(); }),
+                    lanes([&](int l) { return body[l]->orientation.y(); }),
+                    lanes([&](int l) { return body[l]->orientation.z(); }),
+                    lanes([&](int l) { return body[l]->orientation.w(); }), local);
+    };
+    const FourVectors r_a = turned(a, vectors([&](int l) { return j[l]->local_anchor_a; }));
+    const FourVectors r_b = turned(b, vectors([&](int l) { return j[l]->local_anchor_b; }));
+    const FourVectors position_a = vectors([&](int l) { return a[l]->position; });
+    const FourVectors position_b = vectors([&](int l) { return b[l]->position; });
+    const FourVectors center_delta{position_b.x - position_a.x, position_b.y - position_a.y,
+                                   position_b.z - position_a.z};
+    const auto store = [&](float(&dst)[3][W], const FourVectors& v, int l) {
+      dst[0][first + l] = static_cast<float>(v.x[l]);
+      dst[1][first + l] = static_cast<float>(v.y[l]);
+      dst[2][first + l] = static_cast<float>(v.z[l]);
+    };
+    for (int l = 0; l < count; ++l) {
+      if (g.id[first + l] == kPadding) continue;
+      store(g.r_a, r_a, l);
+      store(g.r_b, r_b, l);
+      store(g.center_delta, center_delta, l);
+    }
   }
 }
 
@@ -196,9 +240,12 @@ class LaneSolverImpl final : public LaneSolver {
   void prepare(std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
                const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                const solver::Share& share) override {
-    visit_lanes(*this, share, [&]<class Kind>(auto& group, int lane, std::uint32_t joint) {
-      write_anchors(group, lane, joints[joint], bodies);
-      Kind::write_step_start(group, lane, joints[joint], bodies);
+    visit_groups(*this, share, [&]<class Kind>(auto& group, int width) {
+      write_anchors(group, joints, bodies);
+      for (int lane = 0; lane < width; ++lane) {
+        if (group.id[lane] != kPadding)
+          Kind::write_step_start(group, lane, joints[group.id[lane]], bodies);
+      }
     });
     for (auto& c : colors_) run_share(c, kernels_, share, PassName::prepare, arrays, ctx);
     if (share.thread == 0) {
@@ -407,22 +454,19 @@ class LaneSolverImpl final : public LaneSolver {
     count(overflow_, 1);
   }
 
-  // Visits every real lane of this thread's share of the groups of every colour, then (on
-  // thread 0 only) of the overflow set, as f.template operator()<Kind>(group, lane, slot).
-  // Self is LaneSolverImpl or const LaneSolverImpl. `in_colour_order`: a team barrier after
-  // each colour and after the overflow set, for visits that write into shared bodies.
+  // Visits this thread's share of the groups of every colour, then (on thread 0 only) of the
+  // overflow set, as f.template operator()<Kind>(group, width). Self is LaneSolverImpl or
+  // const LaneSolverImpl. `in_colour_order`: a team barrier after each colour and after the
+  // overflow set, for visits that write into shared bodies.
   template <class Self, class F>
-  static void visit_lanes(Self& self, const solver::Share& share, F&& f,
-                          bool in_colour_order = false) {
+  static void visit_groups(Self& self, const solver::Share& share, F&& f,
+                           bool in_colour_order = false) {
     const auto visit = [&](auto& batches, int width, const solver::Share& part) {
       JointKinds::for_each([&]<class Kind>() {
         auto& groups = std::get<JointKinds::index_of<Kind>()>(batches).groups;
         const solver::Slice slice = solver::slice_of(groups.size(), part);
         for (std::size_t i = slice.begin; i < slice.end; ++i) {
-          auto& g = groups[i];
-          for (int lane = 0; lane < width; ++lane) {
-            if (g.id[lane] != kPadding) f.template operator()<Kind>(g, lane, g.id[lane]);
-          }
+          f.template operator()<Kind>(groups[i], width);
         }
       });
     };
@@ -432,6 +476,21 @@ class LaneSolverImpl final : public LaneSolver {
     }
     if (share.thread == 0) visit(self.overflow_, 1, solver::Share{});
     if (in_colour_order) team_barrier(share);
+  }
+
+  // visit_groups, lane by lane: every real lane as f.template operator()<Kind>(group, lane,
+  // slot).
+  template <class Self, class F>
+  static void visit_lanes(Self& self, const solver::Share& share, F&& f,
+                          bool in_colour_order = false) {
+    visit_groups(
+        self, share,
+        [&]<class Kind>(auto& g, int width) {
+          for (int lane = 0; lane < width; ++lane) {
+            if (g.id[lane] != kPadding) f.template operator()<Kind>(g, lane, g.id[lane]);
+          }
+        },
+        in_colour_order);
   }
 
   KernelTable<W> kernels_;
