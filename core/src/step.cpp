@@ -145,8 +145,8 @@ void World::Impl::geometric_inertia(float h, double impulse_substep,
   if (share.thread == 0) extra_inertia_on = true;
   // |force| = |impulse of a sub-step| / that sub-step
   const double t = std::max(h, kGeometricTimeFloor);
-  lane_solver->accumulate_geometric_inertia(joints, bodies, t * t / impulse_substep, extra_inertia,
-                                            share);
+  lane_solver->accumulate_geometric_inertia(joints, dynamic_body, t * t / impulse_substep,
+                                            extra_inertia, share);
 }
 
 void World::Impl::list_bodies() {
@@ -159,8 +159,10 @@ void World::Impl::list_bodies() {
   sb.force.resize(records);
   sb.movable.clear();
   sb.blocks.clear();
+  dynamic_body.resize(bodies.size());
   for (std::uint32_t s = 0; s < bodies.size(); ++s) {
     const BodySlot& b = bodies[s];
+    dynamic_body[s] = b.alive && b.type == BodyType::Dynamic ? 1 : 0;
     if (b.alive && b.type != BodyType::Static && !b.asleep) {
       sb.movable.push_back(s);
       const std::int32_t block = static_cast<std::int32_t>(s + 1) / kBlock * kBlock;

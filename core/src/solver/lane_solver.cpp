@@ -210,7 +210,7 @@ class LaneSolverImpl final : public LaneSolver {
   }
 
   void accumulate_geometric_inertia(const std::vector<JointSlot>& joints,
-                                    const std::vector<BodySlot>& bodies, double factor,
+                                    const std::vector<std::uint8_t>& dynamic, double factor,
                                     std::vector<double>& extra,
                                     const solver::Share& share) const override {
     // Colour by colour with a barrier between: a colour's joints share no dynamic body, so
@@ -218,7 +218,7 @@ class LaneSolverImpl final : public LaneSolver {
     // the thread count (bit-identical). Static and kinematic bodies, which joints of one
     // colour may share, take no extra inertia: nothing reads theirs.
     const auto add = [&](std::uint32_t body, const Eigen::Vector3d& anchor, double magnitude) {
-      if (bodies[body].type == BodyType::Dynamic) extra[body] += factor * magnitude * anchor.norm();
+      if (dynamic[body] != 0) extra[body] += factor * magnitude * anchor.norm();
     };
     visit_lanes(
         *this, share,
