@@ -49,6 +49,11 @@ CLI::App* add_hardcases_command(CLI::App& app, HardcasesOptions& o) {
                   "a rigid chain solved exactly is judged as one that does not stretch")
       ->check(CLI::IsMember(solver_names()))
       ->capture_default_str();
+  cmd->add_option("--substeps", o.substeps,
+                  "sub-steps per step for every case (the cases that set their own keep them); "
+                  "the bounds follow, as a rigid row's stiffness is capped by the sub-step")
+      ->check(whole_in(1, 1000))
+      ->capture_default_str();
   cmd->add_option("--case", o.only, "only the cases whose name contains TEXT")->type_name("TEXT");
   cmd->add_flag("--quick", o.quick, "skip the 10,000-link chains");
   cmd->add_option("--view", o.view_dir,
@@ -65,6 +70,7 @@ int hardcases_command(const HardcasesOptions& options) {
   WorldSettings settings;
   settings.simd = parse_simd(options.simd);
   settings.solver = parse_solver(options.solver);
+  settings.substeps = options.substeps;
   const bool quick = options.quick;
 
   const auto cases = scenes::hard_cases();

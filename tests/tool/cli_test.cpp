@@ -245,6 +245,28 @@ TEST(ToolCli, HardcasesWriteAViewerPagePerCase) {
   EXPECT_NE(index.find("kinematic driver"), std::string::npos);
 }
 
+// --substeps reaches every case's world and its bounds: at one sub-step a rigid row's
+// stiffness is capped at a quarter of 60 Hz, so the hanging chain stretches more than at the
+// default 4 and its bound (the static stretch of the capped springs) grows with it.
+TEST(ToolCli, HardcasesTakeTheSubStepsAndTheirBounds) {
+  const auto error_and_bound = [](const std::string& extra) {
+    const ToolRun run = run_tool("hardcases --case \"mass ratio 10:1\"" + extra);
+    EXPECT_EQ(run.exit_code, 0) << run.err;
+    // "| mass ratio 10:1 | <parameters> | <error> (<= <bound>) | ..."
+    const std::size_t row = run.out.find("| mass ratio 10:1 |");
+    const std::size_t cell = run.out.find(" | ", run.out.find(" | ", row + 2) + 3) + 3;
+    const double error = std::stod(run.out.substr(cell));
+    const double bound = std::stod(run.out.substr(run.out.find("(<= ", cell) + 4));
+    return std::pair{error, bound};
+  };
+  const auto [error_4, bound_4] = error_and_bound("");
+  const auto [error_1, bound_1] = error_and_bound(" --substeps 1");
+  EXPECT_GT(error_1, 2.0 * error_4);
+  EXPECT_GT(bound_1, 2.0 * bound_4);
+  const ToolRun zero = run_tool("hardcases --substeps 0");
+  EXPECT_EQ(zero.exit_code, 2);
+  EXPECT_NE(zero.err.find("--substeps"), std::string::npos) << zero.err;
+}
 
 TEST(ToolCli, ProfileRecordsAndReplayChecksIt) {
   const std::string dir = scratch_dir("record");
