@@ -301,6 +301,7 @@ TEST(RecordingContacts, ContactSettingsAreInTheInitialState) {
   s.contact.damping_ratio = 3.0;
   s.contact.max_push_out_speed = 1.5;
   s.contact.restitution_threshold = 0.25;
+  s.contact.friction_while_solving = false;
   const std::vector<std::uint64_t> hashes = record(path, 0, 20, s);
   EXPECT_EQ(replay_checking(path, hashes).steps, 20);
   ContactScene scene(s);

@@ -69,6 +69,9 @@ CLI::App* add_profile_command(CLI::App& app, ProfileOptions& o) {
       ->check(CLI::IsMember(solver_names()))
       ->capture_default_str();
   cmd->add_flag("--no-warm-start", o.no_warm_start, "start every sub-step's impulses at zero");
+  cmd->add_flag("--no-friction-while-solving", o.no_friction_while_solving,
+                "contacts: friction rows in the relax passes only "
+                "(ContactSettings::friction_while_solving = false)");
   cmd->add_flag("--no-sleep", o.no_sleep, "islands at rest stay awake");
   cmd->add_flag("--general", o.general,
                 "every joint on the general kernel and every stage run (the baseline)");
@@ -119,6 +122,7 @@ int profile_command(ProfileOptions o) {
   if (given("--simd")) settings.simd = parse_simd(o.simd);
   if (given("--solver")) settings.solver = parse_solver(o.solver);
   if (o.no_warm_start) settings.warm_start = false;
+  if (o.no_friction_while_solving) settings.contact.friction_while_solving = false;
   if (o.no_sleep) settings.sleeping = false;
   if (o.general) settings.specialize = false;
   const bool show_plan = o.show_plan;
@@ -218,9 +222,10 @@ int profile_command(ProfileOptions o) {
               world.joint_count(), run.rows);
   std::printf(
       "settings         %ld steps of 1/60 s, %d sub-steps, %d solve + %d relax iterations, simd "
-      "%s (%d lanes)%s\n",
+      "%s (%d lanes)%s%s\n",
       steps, settings.substeps, settings.solve_iterations, settings.relax_iterations,
-      simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start");
+      simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start",
+      settings.contact.friction_while_solving ? "" : ", contact friction while relaxing only");
   const std::string policy =
       settings.fixed_threads ? "fixed by --threads-fixed"
                              : "the adaptive policy switched " +

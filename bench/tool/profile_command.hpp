@@ -14,6 +14,7 @@ struct ProfileOptions {
   std::string solver = "iterative";
   bool threads_fixed = false;
   bool no_warm_start = false, no_sleep = false, general = false, show_plan = false;
+  bool no_friction_while_solving = false;
   std::string json_path, csv_path, trace_path, save_path, record_path;
   std::string recording_overhead_path;  // --recording-overhead (tool/recording_overhead.hpp)
   double bandwidth_gbps = 0.0;  // a triad bandwidth for the memory section's fractions (0: none)

@@ -59,6 +59,8 @@ std::uint64_t World::state_hash() const {
     h.value(s.contact.damping_ratio);
     h.value(s.contact.max_push_out_speed);
     h.value(s.contact.restitution_threshold);
+    // Only when off, so that the hashes of worlds from before the setting still hold.
+    if (!s.contact.friction_while_solving) h.value(s.contact.friction_while_solving);
   }
   // Not hashed: simd, threads and specialize, which by design never change a result, so that runs
   // at different widths and thread counts can be compared by hash.

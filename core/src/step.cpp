@@ -339,6 +339,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
                        s.warm_start});
   w.plan_contacts(contact_solver.layout());
   const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
+  // Friction only relaxed needs a relax pass to run in.
+  const bool friction_while_solving = s.contact.friction_while_solving || s.relax_iterations == 0;
   // Contacts run beside the joints in the same stages: with contacts, the solve stages run
   // even when no joint needs them; restitution only when some contact asks for it.
   const bool has_contacts = !contact_solver.empty();
@@ -453,7 +455,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
         stage(Stage::Solve, [&] {
           for (int i = 0; i < s.solve_iterations; ++i) {
             if (planned(PlanStage::Solve)) solver.solve(arrays, ctx, share);
-            if (has_contacts) contact_solver.solve(arrays, ctx, contact_ctx, share);
+            if (has_contacts) {
+              contact_solver.solve(arrays, ctx, contact_ctx, friction_while_solving, share);
+            }
           }
         });
       }

@@ -58,8 +58,9 @@ struct SlopeRun {
   double x_at_1s, x_at_2s, v_at_1s, v_at_2s;
 };
 
-SlopeRun slide(double angle, double friction) {
+SlopeRun slide(double angle, double friction, bool friction_while_solving = true) {
   WorldSettings s = settings_without_sleep();
+  s.contact.friction_while_solving = friction_while_solving;
   s.gravity = 9.81 * Eigen::Vector3d(std::sin(angle), -std::cos(angle), 0.0);
   World world(s);
   const BodyId ground = add_ground(world);
@@ -96,6 +97,23 @@ TEST(ContactPhysics, BoxOnASlopeSlidesWithTheKineticAcceleration) {
   // Between 1 s and 2 s (start-up left out): v gains a t, x gains the mean speed times t.
   EXPECT_NEAR(run.v_at_2s - run.v_at_1s, expected, 0.02 * expected);
   EXPECT_NEAR(run.x_at_2s - run.x_at_1s, 1.5 * expected, 0.02 * 1.5 * expected);
+}
+
+// Friction in the relax passes only: the warm start brings the last relax pass's friction
+// impulse into each sub-step, so static friction holds as tightly and kinetic friction slides
+// at the same acceleration.
+TEST(ContactPhysics, FrictionWhileRelaxingOnlyHoldsAndSlidesAsTheKineticLaw) {
+  const SlopeRun stays = slide(25.0 * std::numbers::pi / 180.0, 0.6, false);
+  EXPECT_LT(std::abs(stays.x_at_2s), 1e-3);
+  EXPECT_LT(std::abs(stays.x_at_2s - stays.x_at_1s), 1e-6);
+  EXPECT_LT(std::abs(stays.v_at_2s), 1e-5);
+  const double angle = 40.0 * std::numbers::pi / 180.0;
+  const SlopeRun slides = slide(angle, 0.3, false);
+  const double expected = 9.81 * (std::sin(angle) - 0.3 * std::cos(angle));
+  EXPECT_NEAR(slides.v_at_2s - slides.v_at_1s, expected, 0.02 * expected);
+  EXPECT_NEAR(slides.x_at_2s - slides.x_at_1s, 1.5 * expected, 0.02 * 1.5 * expected);
+  // And it is another solve: the trajectory differs from friction in both passes.
+  EXPECT_NE(slides.x_at_2s, slide(angle, 0.3).x_at_2s);
 }
 
 TEST(ContactPhysics, FrictionlessBoxSlidesWithTheFullSlopeAcceleration) {

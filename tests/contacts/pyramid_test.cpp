@@ -113,6 +113,18 @@ TEST(Pyramid, Base10HoldsWithTheDefaultSettings) {
                    .drift = 1e-5});
 }
 
+// Friction in the relax passes only (ContactSettings::friction_while_solving = false, as
+// Box3D): the warm start carries the last relax pass's friction impulse into the next
+// sub-step, so the stack still stands to the same bounds.
+TEST(Pyramid, Base10HoldsWithFrictionWhileRelaxingOnly) {
+  WorldSettings s;
+  s.sleeping = false;
+  s.contact.friction_while_solving = false;
+  const Holding h = run_pyramid(10, s, 0.6, 300);
+  expect_holds(h,
+               {.sideways = 2e-3, .sink_margin = 1e-3, .speed = 1e-4, .spin = 1e-4, .drift = 1e-5});
+}
+
 // Base 100 (5,050 boxes) needs 180 Hz against tipping: beyond what 4 sub-steps solve (at the
 // default 4 sub-steps even 60 Hz, a quarter of the sub-step rate, shakes a stack apart; 200
 // Hz on 16 sub-steps stands but jitters at 6 cm/s), so it holds with 200 Hz on 24 sub-steps

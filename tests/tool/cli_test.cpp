@@ -24,10 +24,11 @@ TEST(ToolCli, HelpListsEveryCommandsOptions) {
   const ToolRun profile = run_tool("profile --help");
   EXPECT_EQ(profile.exit_code, 0);
   for (const char* option :
-       {"--links",    "--chains",     "--joint",     "--layout",  "--end-mass", "--size",
-        "--span",     "--loads",      "--load-mass", "--hertz",   "--zeta",     "--steps",
-        "--substeps", "--iterations", "--relax",     "--threads", "--simd",     "--no-warm-start",
-        "--no-sleep", "--general",    "--plan",      "--json",    "--csv",      "--trace"})
+       {"--links",   "--chains", "--joint",         "--layout",     "--end-mass",
+        "--size",    "--span",   "--loads",         "--load-mass",  "--hertz",
+        "--zeta",    "--steps",  "--substeps",      "--iterations", "--relax",
+        "--threads", "--simd",   "--no-warm-start", "--no-sleep",   "--general",
+        "--plan",    "--json",   "--csv",           "--trace",      "--no-friction-while-solving"})
     EXPECT_NE(profile.out.find(option), std::string::npos) << option;
 
   const ToolRun sweep = run_tool("sweep --help");

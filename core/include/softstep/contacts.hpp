@@ -112,6 +112,12 @@ struct ContactSettings {
   // Restitution applies only when the pair closes faster than this, m/s, >= 0 (slow contacts
   // come to rest instead of jittering).
   double restitution_threshold = 1.0;
+  // Friction rows in the solve passes too (true), or in the relax passes only (false, as
+  // Box3D does): a 4-point manifold's solve pass then runs its 4 normal rows instead of 12.
+  // Warm starting carries the friction impulse of the last relax pass into the next sub-step,
+  // so static friction still holds; with relax_iterations 0 friction stays in the solve passes.
+  // What it costs and saves: README "Contacts", "Friction while relaxing only".
+  bool friction_while_solving = true;
   bool operator==(const ContactSettings&) const = default;
 };
 

@@ -425,8 +425,11 @@ class ContactSolverImpl final : public ContactSolver {
     if (share.thread == 0) clear_share<1>(overflow_, solver::Share{});
   }
   void solve(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
-             const simd::ContactContext& cc, const solver::Share& share) override {
-    run_colors(share, ContactPass::solve, arrays, ctx, cc);
+             const simd::ContactContext& cc, bool friction, const solver::Share& share) override {
+    // Without friction a group runs its signature's variant without the friction rows; its
+    // friction impulses stay as the warm start left them.
+    run_colors(share, ContactPass::solve, arrays, ctx, cc,
+               friction ? ~0u : ~std::uint32_t{simd::kContactFriction});
   }
   void relax(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
              const simd::ContactContext& cc, const solver::Share& share) override {
@@ -556,25 +559,27 @@ class ContactSolverImpl final : public ContactSolver {
   static void run_share(ContactBatch<V>& batch, const solver::ContactKernels<V>& kernels,
                         const solver::Share& share, ContactPass pass,
                         const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
-                        const simd::ContactContext& cc) {
+                        const simd::ContactContext& cc, std::uint32_t signature_mask = ~0u) {
     for (const ContactRun& r : batch.runs) {
       const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
       if (slice.end > slice.begin) {
-        pass_of<V>(kernels, pass, r.signature)(batch.groups.data() + r.begin + slice.begin,
-                                               slice.end - slice.begin, arrays, ctx, cc);
+        pass_of<V>(kernels, pass, r.signature & signature_mask)(
+            batch.groups.data() + r.begin + slice.begin, slice.end - slice.begin, arrays, ctx, cc);
       }
     }
   }
 
   // As the joints: colour by colour with a barrier after each, then the overflow in order.
   void run_colors(const solver::Share& share, ContactPass pass, const simd::BodyArrays& arrays,
-                  const simd::SubstepContext& ctx, const simd::ContactContext& cc) {
+                  const simd::SubstepContext& ctx, const simd::ContactContext& cc,
+                  std::uint32_t signature_mask = ~0u) {
     for (std::uint32_t c = 0; c < layout_.colors; ++c) {
-      run_share<W>(colors_[c], kernels_, share, pass, arrays, ctx, cc);
+      run_share<W>(colors_[c], kernels_, share, pass, arrays, ctx, cc, signature_mask);
       solver::team_barrier(share);
     }
     if (!overflow_.groups.empty()) {
-      if (share.thread == 0) run_share<1>(overflow_, scalar_, solver::Share{}, pass, arrays, ctx, cc);
+      if (share.thread == 0)
+        run_share<1>(overflow_, scalar_, solver::Share{}, pass, arrays, ctx, cc, signature_mask);
       solver::team_barrier(share);
     }
   }

@@ -61,8 +61,10 @@ class ContactSolver {
   // With warm starting off, before each sub-step's solve: every lane's accumulated impulses
   // to zero (each thread the groups it solves; the overflow on thread 0).
   virtual void clear_impulses(const solver::Share&) = 0;
+  // `friction`: the friction rows too (ContactSettings::friction_while_solving), or only the
+  // normal and rolling rows.
   virtual void solve(const simd::BodyArrays&, const simd::SubstepContext&,
-                     const simd::ContactContext&, const solver::Share&) = 0;
+                     const simd::ContactContext&, bool friction, const solver::Share&) = 0;
   virtual void relax(const simd::BodyArrays&, const simd::SubstepContext&,
                      const simd::ContactContext&, const solver::Share&) = 0;
   virtual void restitute(const simd::BodyArrays&, const simd::SubstepContext&,

@@ -43,6 +43,13 @@ constexpr struct {
     {"restitution_threshold", &ContactSettings::restitution_threshold},
 };
 
+constexpr struct {
+  const char* key;
+  bool ContactSettings::*member;
+} kContactSwitches[] = {
+    {"friction_while_solving", &ContactSettings::friction_while_solving},
+};
+
 constexpr Field<bool> kSwitches[] = {
     {"warm_start", &WorldSettings::warm_start},
     {"geometric_stiffness", &WorldSettings::geometric_stiffness},
@@ -65,6 +72,8 @@ WorldSettings read_settings(ObjectReader& fields) {
   ObjectReader contact(fields.source(), fields.object("contact"), fields.path_of("contact"));
   for (const auto& f : kContactNumbers)
     s.contact.*f.member = contact.number(f.key, s.contact.*f.member);
+  for (const auto& f : kContactSwitches)
+    s.contact.*f.member = contact.boolean(f.key, s.contact.*f.member);
   contact.no_other_keys();
   const std::string simd = fields.text("simd", simd_width_name(s.simd));
   bool known = false;
@@ -99,6 +108,7 @@ nlohmann::json settings_json(const WorldSettings& s) {
   for (const auto& f : kNumbers) j[f.key] = s.*f.member;
   for (const auto& f : kSwitches) j[f.key] = s.*f.member;
   for (const auto& f : kContactNumbers) j["contact"][f.key] = s.contact.*f.member;
+  for (const auto& f : kContactSwitches) j["contact"][f.key] = s.contact.*f.member;
   j["simd"] = simd_width_name(s.simd);
   j["solver"] = solver_mode_name(s.solver);
   return j;
