@@ -9,25 +9,30 @@
 
 namespace softstep::tool {
 
-double contact_rows(const World& world, std::span<const ContactManifold> contacts) {
+ContactRows contact_rows(const World& world, std::span<const ContactManifold> contacts) {
   const auto moving = [&](BodyId id) {
     return world.body(id).type == BodyType::Dynamic && world.is_awake(id);
   };
-  double rows = 0.0;
+  ContactRows rows;
   for (const ContactManifold& m : contacts) {
     if (!moving(m.body_a) && !moving(m.body_b)) continue;
-    rows += m.point_count * (m.friction > 0.0 ? 3.0 : 1.0) + (m.rolling_resistance > 0.0 ? 3.0 : 0.0);
+    const double friction = m.friction > 0.0 ? 2.0 * m.point_count : 0.0;
+    rows.all += m.point_count + friction + (m.rolling_resistance > 0.0 ? 3.0 : 0.0);
+    rows.friction += friction;
   }
   return rows;
 }
 
-void ContactSamples::add_step(const World& world, double step_rows) {
+void ContactSamples::add_step(const World& world, ContactRows step_rows) {
   const StepPlan& plan = world.step_plan();
   if (plan.contact_manifolds == 0) return;
   ++steps;
   manifolds.push_back(double(plan.contact_manifolds));
   points.push_back(double(plan.contact_points));
-  if (!std::isnan(step_rows)) rows.push_back(step_rows);
+  if (!std::isnan(step_rows.all)) {
+    rows.push_back(step_rows.all);
+    friction_rows.push_back(step_rows.friction);
+  }
   load_ms.push_back(world.last_step_profile().contact_load_ms);
   check_ms.push_back(world.last_step_profile().contact_check_ms);
   const auto start = std::chrono::steady_clock::now();
@@ -39,6 +44,9 @@ void ContactSamples::add_step(const World& world, double step_rows) {
 }
 
 double ContactSamples::median_rows() const { return median(rows); }
+double ContactSamples::median_friction_rows() const {
+  return median(friction_rows);
+}
 
 std::vector<PlanStage> contact_stages(const StepPlan& plan, const WorldSettings& settings) {
   if (plan.contact_manifolds == 0) return {};

@@ -17,13 +17,18 @@ namespace softstep::tool {
 // two tangent rows; per manifold with rolling resistance > 0 three angular rows. Only the
 // manifolds softstep solves count: those with an awake dynamic body (a manifold whose bodies
 // are all static or asleep is left out of the lanes). Counted before the step that takes them.
-double contact_rows(const World& world, std::span<const ContactManifold> contacts);
+// The contact rows of a pass over these manifolds (those touching an awake dynamic body), and
+// how many of them are friction rows.
+struct ContactRows {
+  double all = 0.0, friction = 0.0;
+};
+ContactRows contact_rows(const World& world, std::span<const ContactManifold> contacts);
 
 struct ContactSamples {
   long steps = 0;  // steps that had contacts in lanes
   // Per such step: from its plan and profile, and the rows (NaN when the contacts were not
   // seen, as in a replayed recording: then no rows figure is printed).
-  std::vector<double> manifolds, points, rows, load_ms, check_ms;
+  std::vector<double> manifolds, points, rows, friction_rows, load_ms, check_ms;
   // Per step: the scene's own narrow phase before it (empty when the scene has none).
   std::vector<double> collision_ms;
   // Per such step: World::contact_readings() asked right after it (the step leaves the
@@ -33,8 +38,9 @@ struct ContactSamples {
   std::size_t colors = 0, overflow = 0;  // the last step's
   // After a step; `rows` from contact_rows before it, or NaN. Asks for the step's readings
   // (timed into readings_ms).
-  void add_step(const World& world, double rows);
-  double median_rows() const;  // 0 with no rows known
+  void add_step(const World& world, ContactRows rows);
+  double median_rows() const;           // 0 with no rows known
+  double median_friction_rows() const;  // of those, friction rows
 };
 
 // The plan's stages that run the contacts (their time is in the stage table's rows of the same

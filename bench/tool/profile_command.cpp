@@ -159,7 +159,7 @@ int profile_command(ProfileOptions o) {
     ProgressBar bar("profile", steps);
     for (long i = 0; i < steps; ++i) {
       std::span<const ContactManifold> contacts;
-      double rows = kNaN;
+      ContactRows rows{kNaN, kNaN};
       if (run.contacts) {
         const auto c0 = std::chrono::steady_clock::now();
         contacts = run.contacts();
@@ -208,10 +208,15 @@ int profile_command(ProfileOptions o) {
   const double joint_row_solves =
       run.rows * settings.substeps *
       (settings.solve_iterations + (relaxed ? settings.relax_iterations : 0));
-  // Contacts are relaxed whenever there are relax passes (rigid, unbiased normal rows).
+  // Contacts are relaxed whenever there are relax passes (rigid, unbiased normal rows); their
+  // solve passes leave the friction rows out when contact_friction_while_solving says so.
   const double contact_rows_per_pass = contact_samples.median_rows();
-  const double contact_row_solves = contact_rows_per_pass * settings.substeps *
-                                    (settings.solve_iterations + settings.relax_iterations);
+  const double contact_solve_rows =
+      contact_rows_per_pass -
+      (contact_friction_while_solving(settings) ? 0.0 : contact_samples.median_friction_rows());
+  const double contact_row_solves =
+      settings.substeps * (contact_solve_rows * settings.solve_iterations +
+                           contact_rows_per_pass * settings.relax_iterations);
   const double row_solves = joint_row_solves + contact_row_solves;
   const StageTimes stage_median = stage_medians(samples.stage_ms);
   const double stretch = run.stretch_ratio ? run.stretch_ratio() : kNaN;
@@ -225,7 +230,7 @@ int profile_command(ProfileOptions o) {
       "%s (%d lanes)%s%s\n",
       steps, settings.substeps, settings.solve_iterations, settings.relax_iterations,
       simd_width_name(layout.simd), layout.lanes, settings.warm_start ? "" : ", no warm start",
-      settings.contact.friction_while_solving ? "" : ", contact friction while relaxing only");
+      contact_friction_while_solving(settings) ? "" : ", contact friction while relaxing only");
   const std::string policy =
       settings.fixed_threads ? "fixed by --threads-fixed"
                              : "the adaptive policy switched " +
@@ -292,42 +297,43 @@ int profile_command(ProfileOptions o) {
     char hash[32];
     std::snprintf(hash, sizeof hash, "%016llx",
                   static_cast<unsigned long long>(world.state_hash()));
-    const nlohmann::json j = {{"scene", choice.scene},
-                              {"description", run.description},
-                              {"bodies", world.body_count()},
-                              {"joints", world.joint_count()},
-                              {"steps", steps},
-                              {"substeps", settings.substeps},
-                              {"solve_iterations", settings.solve_iterations},
-                              {"relax_iterations", settings.relax_iterations},
-                              {"threads", world.last_step_profile().threads},
-                              {"shared_steps", samples.shared_steps},
-                              {"thread_switches", world.last_step_profile().thread_switches},
-                              {"simd", simd_width_name(layout.simd)},
-                              {"ms_per_step", ms},
-                              {"stage_ms", stage_json(stage_median)},
-                              {"rows_per_second", row_solves / (ms * 1e-3)},
-                              {"joint_rows", run.rows},
-                              {"contact_rows", run.contacts ? contact_rows_per_pass : kNaN},
-                              {"ns_per_row_solve", ms * 1e6 / row_solves},
-                              {"barrier_wait_share", median(samples.wait_share)},
-                              {"serial_share", median(samples.serial_share)},
-                              {"colors", layout.colors_used},
-                              {"overflow_joints", layout.overflow_joints},
-                              {"max_joint_error_m", errors.max},
-                              {"rms_joint_error_m", errors.rms},
-                              {"max_joint_error_run_m", worst_error_run},
-                              {"stretch_ratio", stretch},
-                              {"limit_violation_deg", limit_now},
-                              {"limit_violation_run_deg", run.limit_violation_deg ? worst_limit_run : kNaN},
-                              {"scene_contacts_ms",
-                               run.contacts ? median(contact_samples.collision_ms) : kNaN},
-                              {"contacts", contacts_json(contact_samples, world.step_plan(), world.settings())},
-                              {"plan", plan_json(world.step_plan())},
-                              {"awake_bodies", world.step_plan().awake_bodies},
-                              {"sleeping_islands", world.step_plan().sleeping_islands},
-                              {"memory", traffic_json(traffic, stage_median, ms, o.bandwidth_gbps)},
-                              {"state_hash", hash}};
+    const nlohmann::json j = {
+        {"scene", choice.scene},
+        {"description", run.description},
+        {"bodies", world.body_count()},
+        {"joints", world.joint_count()},
+        {"steps", steps},
+        {"substeps", settings.substeps},
+        {"solve_iterations", settings.solve_iterations},
+        {"relax_iterations", settings.relax_iterations},
+        {"contact_friction_while_solving", contact_friction_while_solving(settings)},
+        {"threads", world.last_step_profile().threads},
+        {"shared_steps", samples.shared_steps},
+        {"thread_switches", world.last_step_profile().thread_switches},
+        {"simd", simd_width_name(layout.simd)},
+        {"ms_per_step", ms},
+        {"stage_ms", stage_json(stage_median)},
+        {"rows_per_second", row_solves / (ms * 1e-3)},
+        {"joint_rows", run.rows},
+        {"contact_rows", run.contacts ? contact_rows_per_pass : kNaN},
+        {"ns_per_row_solve", ms * 1e6 / row_solves},
+        {"barrier_wait_share", median(samples.wait_share)},
+        {"serial_share", median(samples.serial_share)},
+        {"colors", layout.colors_used},
+        {"overflow_joints", layout.overflow_joints},
+        {"max_joint_error_m", errors.max},
+        {"rms_joint_error_m", errors.rms},
+        {"max_joint_error_run_m", worst_error_run},
+        {"stretch_ratio", stretch},
+        {"limit_violation_deg", limit_now},
+        {"limit_violation_run_deg", run.limit_violation_deg ? worst_limit_run : kNaN},
+        {"scene_contacts_ms", run.contacts ? median(contact_samples.collision_ms) : kNaN},
+        {"contacts", contacts_json(contact_samples, world.step_plan(), world.settings())},
+        {"plan", plan_json(world.step_plan())},
+        {"awake_bodies", world.step_plan().awake_bodies},
+        {"sleeping_islands", world.step_plan().sleeping_islands},
+        {"memory", traffic_json(traffic, stage_median, ms, o.bandwidth_gbps)},
+        {"state_hash", hash}};
     write_file(json_path, j.dump(2) + "\n");
   }
   if (!csv_path.empty()) {

@@ -20,9 +20,9 @@ namespace {
 // steps would no longer match. (--threads, --threads-fixed, --simd and --general never change
 // a result, so they apply from the first record.)
 void refuse_result_changing_options(const ProfileOptions& o) {
-  for (const char* option : {"--steps", "--substeps", "--iterations", "--relax",
-                             "--no-warm-start", "--no-sleep", "--save", "--record",
-                             "--recording-overhead"}) {
+  for (const char* option :
+       {"--steps", "--substeps", "--iterations", "--relax", "--no-warm-start", "--no-sleep",
+        "--no-friction-while-solving", "--save", "--record", "--recording-overhead"}) {
     if (o.command != nullptr && o.command->count(option) > 0) {
       throw UsageError(std::string(option) + " cannot be used with a recording (" +
                        o.scene.scene +
@@ -73,7 +73,7 @@ int profile_recording(const ProfileOptions& o) {
     bodies = world.body_count();
     joints = world.joint_count();
     threads = p.threads;
-    contacts.add_step(world, std::numeric_limits<double>::quiet_NaN());
+    contacts.add_step(world, {std::numeric_limits<double>::quiet_NaN(), 0.0});
   };
   ReplayReport report;
   try {

@@ -339,8 +339,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
                        s.warm_start});
   w.plan_contacts(contact_solver.layout());
   const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
-  // Friction only relaxed needs a relax pass to run in.
-  const bool friction_while_solving = s.contact.friction_while_solving || s.relax_iterations == 0;
+  const bool friction_while_solving = contact_friction_while_solving(s);
   // Contacts run beside the joints in the same stages: with contacts, the solve stages run
   // even when no joint needs them; restitution only when some contact asks for it.
   const bool has_contacts = !contact_solver.empty();

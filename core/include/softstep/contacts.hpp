@@ -113,10 +113,12 @@ struct ContactSettings {
   // come to rest instead of jittering).
   double restitution_threshold = 1.0;
   // Friction rows in the solve passes too (true), or in the relax passes only (false, as
-  // Box3D does): a 4-point manifold's solve pass then runs its 4 normal rows instead of 12.
-  // Warm starting carries the friction impulse of the last relax pass into the next sub-step,
-  // so static friction still holds; with relax_iterations 0 friction stays in the solve passes.
-  // What it costs and saves: README "Contacts", "Friction while relaxing only".
+  // Box3D does, which also leaves its rolling rows out there: ours stay): a 4-point
+  // manifold's solve pass then runs its 4 normal rows instead of 12. Warm starting carries the
+  // friction impulse of the last relax pass into the next sub-step, so static friction still
+  // holds; without a relax pass or without warm starting friction stays in the solve passes
+  // (contact_friction_while_solving, world_settings.hpp). What it costs and saves: README
+  // "Contacts", "Friction while relaxing only".
   bool friction_while_solving = true;
   bool operator==(const ContactSettings&) const = default;
 };

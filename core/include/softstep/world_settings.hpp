@@ -108,4 +108,11 @@ struct WorldSettings {
   ContactSettings contact{};
 };
 
+// Whether the contact solve passes run the friction rows: as contact.friction_while_solving
+// asks, except where friction relaxed only would not carry into the next sub-step (no relax
+// pass to run it in, or no warm start to bring its impulse into the next solve pass).
+inline bool contact_friction_while_solving(const WorldSettings& s) {
+  return s.contact.friction_while_solving || s.relax_iterations == 0 || !s.warm_start;
+}
+
 }  // namespace softstep

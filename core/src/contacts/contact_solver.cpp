@@ -143,7 +143,7 @@ using PointVectors = FourVectors;
 static_assert(kMaxContactPoints == 4, "one lane per point");
 
 PointVectors rotate(const Eigen::Quaterniond& q, const PointVectors& v) {
-  return rotate(q.x(), q.y(), q.z(), q.w(), v);
+  return softstep::rotate(q.x(), q.y(), q.z(), q.w(), v);
 }
 
 // A round shape's surface point, core + offset * n (offset = radius_a for A, -radius_b for B);
