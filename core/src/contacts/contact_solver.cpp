@@ -188,19 +188,26 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
           match.cached ? Eigen::Vector3d(match.sign * match.cached->rolling_impulse)
                        : Eigen::Vector3d::Zero());
   // One coordinate of the points' anchors per lane; lanes past point_count hold 0 and are not
-  // stored. Built lane by lane in registers: zero-filled arrays filled in place cost two
-  // rep stos per manifold (perf).
-  const auto anchors = [&](Eigen::Vector3d ContactPoint::*anchor) {
-    const auto lanes = [&](int axis) {
-      const auto at = [&](int i) {
-        return i < m.point_count ? (m.points[static_cast<std::size_t>(i)].*anchor)[axis] : 0.0;
-      };
-      return PointLanes{at(0), at(1), at(2), at(3)};
-    };
-    return PointVectors{lanes(0), lanes(1), lanes(2)};
-  };
-  const PointVectors anchor_a = anchors(&ContactPoint::anchor_a);
-  const PointVectors anchor_b = anchors(&ContactPoint::anchor_b);
+  // stored. Every element written once: zero-filled arrays filled in place cost two rep stos
+  // per manifold (perf). (No lambda returns a vector here: without AVX, the portable build,
+  // gcc may emit it out of line and rejects the changed return ABI, -Wpsabi.)
+  double along_a[3][4], along_b[3][4];  // axis, then point
+  for (int i = 0; i < 4; ++i) {
+    const bool real = i < m.point_count;
+    const ContactPoint& p = m.points[static_cast<std::size_t>(i)];
+    for (int k = 0; k < 3; ++k) {
+      along_a[k][i] = real ? p.anchor_a[k] : 0.0;
+      along_b[k][i] = real ? p.anchor_b[k] : 0.0;
+    }
+  }
+  const PointVectors anchor_a{
+      PointLanes{along_a[0][0], along_a[0][1], along_a[0][2], along_a[0][3]},
+      PointLanes{along_a[1][0], along_a[1][1], along_a[1][2], along_a[1][3]},
+      PointLanes{along_a[2][0], along_a[2][1], along_a[2][2], along_a[2][3]}};
+  const PointVectors anchor_b{
+      PointLanes{along_b[0][0], along_b[0][1], along_b[0][2], along_b[0][3]},
+      PointLanes{along_b[1][0], along_b[1][1], along_b[1][2], along_b[1][3]},
+      PointLanes{along_b[2][0], along_b[2][1], along_b[2][2], along_b[2][3]}};
   const PointVectors core_a = rotate(a.orientation, anchor_a);
   const PointVectors core_b = rotate(b.orientation, anchor_b);
   const PointVectors r_a = surface_points(core_a, m.radius_a, n);

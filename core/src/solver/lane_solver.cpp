@@ -68,34 +68,39 @@ void write_anchors(simd::AnchorLanes<W>& g, const std::vector<JointSlot>& joints
       if (g.id[first + l] != kPadding) real = l;
     }
     if (real < 0) continue;
-    const JointSlot* j[4];
-    const BodySlot* a[4];
-    const BodySlot* b[4];
+    // Per lane the fields, each element written once. (No lambda returns a vector here:
+    // without AVX, the portable build, gcc may emit it out of line and rejects the changed
+    // return ABI, -Wpsabi.)
+    double q_a[4][4], q_b[4][4];  // x, y, z, w by lane
+    double local_a[3][4], local_b[3][4], position_a[3][4], position_b[3][4];
     for (int l = 0; l < 4; ++l) {
       const bool own = l < count && g.id[first + l] != kPadding;
-      j[l] = &joints[g.id[first + (own ? l : real)]];
-      a[l] = &bodies[j[l]->body_a];
-      b[l] = &bodies[j[l]->body_b];
+      const JointSlot& j = joints[g.id[first + (own ? l : real)]];
+      const BodySlot& a = bodies[j.body_a];
+      const BodySlot& b = bodies[j.body_b];
+      for (int k = 0; k < 4; ++k) {
+        q_a[k][l] = a.orientation.coeffs()[k];
+        q_b[k][l] = b.orientation.coeffs()[k];
+      }
+      for (int k = 0; k < 3; ++k) {
+        local_a[k][l] = j.local_anchor_a[k];
+        local_b[k][l] = j.local_anchor_b[k];
+        position_a[k][l] = a.position[k];
+        position_b[k][l] = b.position[k];
+      }
     }
-    // One field of the four lanes' joints or bodies as a vector.
-    const auto lanes = [](const auto& get) { return FourDoubles{get(0), get(1), get(2), get(3)}; };
-    const auto vectors = [&](const auto& vector_of) {
-      return FourVectors{lanes([&](int l) { return vector_of(l).x(); }),
-                         lanes([&](int l) { return vector_of(l).y(); }),
-                         lanes([&](int l) { return vector_of(l).z(); })};
+    const auto lanes = [](const double(&v)[4]) __attribute__((always_inline)) {
+      return FourDoubles{v[0], v[1], v[2], v[3]};
     };
-    const auto turned = [&](const BodySlot* const(&body)[4], const FourVectors& local) {
-      return rotate(lanes([&](int l) { return body[l]->orientation.x(); }),
-                    lanes([&](int l) { return body[l]->orientation.y(); }),
-                    lanes([&](int l) { return body[l]->orientation.z(); }),
-                    lanes([&](int l) { return body[l]->orientation.w(); }), local);
-    };
-    const FourVectors r_a = turned(a, vectors([&](int l) { return j[l]->local_anchor_a; }));
-    const FourVectors r_b = turned(b, vectors([&](int l) { return j[l]->local_anchor_b; }));
-    const FourVectors position_a = vectors([&](int l) { return a[l]->position; });
-    const FourVectors position_b = vectors([&](int l) { return b[l]->position; });
-    const FourVectors center_delta{position_b.x - position_a.x, position_b.y - position_a.y,
-                                   position_b.z - position_a.z};
+    const FourVectors r_a =
+        rotate(lanes(q_a[0]), lanes(q_a[1]), lanes(q_a[2]), lanes(q_a[3]),
+               FourVectors{lanes(local_a[0]), lanes(local_a[1]), lanes(local_a[2])});
+    const FourVectors r_b =
+        rotate(lanes(q_b[0]), lanes(q_b[1]), lanes(q_b[2]), lanes(q_b[3]),
+               FourVectors{lanes(local_b[0]), lanes(local_b[1]), lanes(local_b[2])});
+    const FourVectors center_delta{lanes(position_b[0]) - lanes(position_a[0]),
+                                   lanes(position_b[1]) - lanes(position_a[1]),
+                                   lanes(position_b[2]) - lanes(position_a[2])};
     const auto store = [&](float(&dst)[3][W], const FourVectors& v, int l) {
       dst[0][first + l] = static_cast<float>(v.x[l]);
       dst[1][first + l] = static_cast<float>(v.y[l]);
