@@ -68,9 +68,9 @@ void write_anchors(simd::AnchorLanes<W>& g, const std::vector<JointSlot>& joints
       if (g.id[first + l] != kPadding) real = l;
     }
     if (real < 0) continue;
-    // Per lane the fields, each element written once. (No lambda returns a vector here:
-    // without AVX, the portable build, gcc may emit it out of line and rejects the changed
-    // return ABI, -Wpsabi.)
+    // Per lane the fields, each element written once; the one lambda that makes a vector of
+    // them is always_inline: without AVX (the portable build) gcc may emit a vector-returning
+    // function out of line and rejects its changed return ABI (-Wpsabi, an error here).
     double q_a[4][4], q_b[4][4];  // x, y, z, w by lane
     double local_a[3][4], local_b[3][4], position_a[3][4], position_b[3][4];
     for (int l = 0; l < 4; ++l) {
