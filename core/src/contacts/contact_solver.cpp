@@ -138,23 +138,17 @@ void put3(float (&dst)[3][W], int lane, const Eigen::Vector3d& v) {
 // lane does the scalar formula's operations in the same order, so every lane holds the bits
 // the scalar code gave (the contact golden hashes and the pyramid's state hash are unchanged).
 // The pack took 3-11 % less time for it (alternated by step in one process, 2026-11-26).
-using PointLanes = FourDoubles;
-using PointVectors = FourVectors;
 static_assert(kMaxContactPoints == 4, "one lane per point");
-
-PointVectors rotate(const Eigen::Quaterniond& q, const PointVectors& v) {
-  return softstep::rotate(q.x(), q.y(), q.z(), q.w(), v);
-}
 
 // A round shape's surface point, core + offset * n (offset = radius_a for A, -radius_b for B);
 // the core itself, bit for bit, for a flat feature (radius 0).
-PointVectors surface_points(const PointVectors& core, double offset, const Eigen::Vector3d& n) {
+FourVectors surface_points(const FourVectors& core, double offset, const Eigen::Vector3d& n) {
   if (offset == 0.0) return core;
   return {core.x + offset * n.x(), core.y + offset * n.y(), core.z + offset * n.z()};
 }
 
 template <int W>
-void put3(float (&dst)[3][W], int lane, const PointVectors& v, int point) {
+void put3(float (&dst)[3][W], int lane, const FourVectors& v, int point) {
   dst[0][lane] = static_cast<float>(v.x[point]);
   dst[1][lane] = static_cast<float>(v.y[point]);
   dst[2][lane] = static_cast<float>(v.z[point]);
@@ -187,10 +181,8 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   put3<W>(g.rolling_impulse, lane,
           match.cached ? Eigen::Vector3d(match.sign * match.cached->rolling_impulse)
                        : Eigen::Vector3d::Zero());
-  // One coordinate of the points' anchors per lane; lanes past point_count hold 0 and are not
-  // stored. Every element written once: zero-filled arrays filled in place cost two rep stos
-  // per manifold (perf). (No lambda returns a vector here: without AVX, the portable build,
-  // gcc may emit it out of line and rejects the changed return ABI, -Wpsabi.)
+  // One point's anchors per lane; lanes past point_count hold 0 and are not stored. Each
+  // element written once and made a vector by load_vectors (four_doubles.hpp says why).
   double along_a[3][4], along_b[3][4];  // axis, then point
   for (int i = 0; i < 4; ++i) {
     const bool real = i < m.point_count;
@@ -200,21 +192,15 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
       along_b[k][i] = real ? p.anchor_b[k] : 0.0;
     }
   }
-  const PointVectors anchor_a{
-      PointLanes{along_a[0][0], along_a[0][1], along_a[0][2], along_a[0][3]},
-      PointLanes{along_a[1][0], along_a[1][1], along_a[1][2], along_a[1][3]},
-      PointLanes{along_a[2][0], along_a[2][1], along_a[2][2], along_a[2][3]}};
-  const PointVectors anchor_b{
-      PointLanes{along_b[0][0], along_b[0][1], along_b[0][2], along_b[0][3]},
-      PointLanes{along_b[1][0], along_b[1][1], along_b[1][2], along_b[1][3]},
-      PointLanes{along_b[2][0], along_b[2][1], along_b[2][2], along_b[2][3]}};
-  const PointVectors core_a = rotate(a.orientation, anchor_a);
-  const PointVectors core_b = rotate(b.orientation, anchor_b);
-  const PointVectors r_a = surface_points(core_a, m.radius_a, n);
-  const PointVectors r_b = surface_points(core_b, -m.radius_b, n);
+  const Eigen::Quaterniond& q_a = a.orientation;
+  const Eigen::Quaterniond& q_b = b.orientation;
+  const FourVectors core_a = rotate(q_a.x(), q_a.y(), q_a.z(), q_a.w(), load_vectors(along_a));
+  const FourVectors core_b = rotate(q_b.x(), q_b.y(), q_b.z(), q_b.w(), load_vectors(along_b));
+  const FourVectors r_a = surface_points(core_a, m.radius_a, n);
+  const FourVectors r_b = surface_points(core_b, -m.radius_b, n);
   // n . (core_b - core_a), summed as Eigen's dot sums three terms.
-  const PointLanes along_normal = (n.x() * (core_b.x - core_a.x) + n.y() * (core_b.y - core_a.y)) +
-                                  n.z() * (core_b.z - core_a.z);
+  const FourDoubles along_normal = (n.x() * (core_b.x - core_a.x) + n.y() * (core_b.y - core_a.y)) +
+                                   n.z() * (core_b.z - core_a.z);
   for (int i = 0; i < m.point_count; ++i) {
     const ContactPoint& p = m.points[static_cast<std::size_t>(i)];
     auto& lanes = g.point[i];

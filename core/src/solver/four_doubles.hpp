@@ -30,6 +30,11 @@ using FourDoubles = double __attribute__((vector_size(32)));
   p[2] = r[2];
 }
 
+// v[0..3], one element per lane.
+[[gnu::always_inline]] inline FourDoubles load4(const double (&v)[4]) {
+  return FourDoubles{v[0], v[1], v[2], v[3]};
+}
+
 // M v for a column-major 3x6 M: its columns scaled by v and summed in column order.
 [[gnu::always_inline]] inline FourDoubles times_vector(const Eigen::Matrix<double, 3, 6>& m,
                                                        const Eigen::Matrix<double, 6, 1>& v) {
@@ -42,6 +47,14 @@ using FourDoubles = double __attribute__((vector_size(32)));
 struct FourVectors {
   FourDoubles x, y, z;
 };
+
+// Lane arrays of x, y and z (v[axis][lane]) as vectors. Gathering a lane's fields into plain
+// arrays and making the vectors here keeps the vectors in registers: zero-filled vectors filled
+// in place cost rep stos per use (perf), and a lambda returning a vector may be emitted out of
+// line without AVX, where gcc rejects the changed return ABI (-Wpsabi, an error here).
+[[gnu::always_inline]] inline FourVectors load_vectors(const double (&v)[3][4]) {
+  return {load4(v[0]), load4(v[1]), load4(v[2])};
+}
 
 // q v in every lane, as Eigen's Quaternion::_transformVector: uv = 2 (q.vec x v), then
 // v + w uv + q.vec x uv. Q is double (one quaternion turns every lane's vector: a contact

@@ -68,9 +68,8 @@ void write_anchors(simd::AnchorLanes<W>& g, const std::vector<JointSlot>& joints
       if (g.id[first + l] != kPadding) real = l;
     }
     if (real < 0) continue;
-    // Per lane the fields, each element written once; the one lambda that makes a vector of
-    // them is always_inline: without AVX (the portable build) gcc may emit a vector-returning
-    // function out of line and rejects its changed return ABI (-Wpsabi, an error here).
+    // Per lane the fields, each element written once and made a vector by load4 or
+    // load_vectors (four_doubles.hpp says why).
     double q_a[4][4], q_b[4][4];  // x, y, z, w by lane
     double local_a[3][4], local_b[3][4], position_a[3][4], position_b[3][4];
     for (int l = 0; l < 4; ++l) {
@@ -89,18 +88,13 @@ void write_anchors(simd::AnchorLanes<W>& g, const std::vector<JointSlot>& joints
         position_b[k][l] = b.position[k];
       }
     }
-    const auto lanes = [](const double(&v)[4]) __attribute__((always_inline)) {
-      return FourDoubles{v[0], v[1], v[2], v[3]};
-    };
     const FourVectors r_a =
-        rotate(lanes(q_a[0]), lanes(q_a[1]), lanes(q_a[2]), lanes(q_a[3]),
-               FourVectors{lanes(local_a[0]), lanes(local_a[1]), lanes(local_a[2])});
+        rotate(load4(q_a[0]), load4(q_a[1]), load4(q_a[2]), load4(q_a[3]), load_vectors(local_a));
     const FourVectors r_b =
-        rotate(lanes(q_b[0]), lanes(q_b[1]), lanes(q_b[2]), lanes(q_b[3]),
-               FourVectors{lanes(local_b[0]), lanes(local_b[1]), lanes(local_b[2])});
-    const FourVectors center_delta{lanes(position_b[0]) - lanes(position_a[0]),
-                                   lanes(position_b[1]) - lanes(position_a[1]),
-                                   lanes(position_b[2]) - lanes(position_a[2])};
+        rotate(load4(q_b[0]), load4(q_b[1]), load4(q_b[2]), load4(q_b[3]), load_vectors(local_b));
+    const FourVectors center_delta{load4(position_b[0]) - load4(position_a[0]),
+                                   load4(position_b[1]) - load4(position_a[1]),
+                                   load4(position_b[2]) - load4(position_a[2])};
     const auto store = [&](float(&dst)[3][W], const FourVectors& v, int l) {
       dst[0][first + l] = static_cast<float>(v.x[l]);
       dst[1][first + l] = static_cast<float>(v.y[l]);
