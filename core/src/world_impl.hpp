@@ -132,9 +132,9 @@ class LaneSolver {
   virtual const std::vector<KernelUse>& uses() const = 0;
   virtual bool needs(Pass pass) const = 0;  // some variant in the lanes runs this pass
   // extra[body] += factor * tension * |local anchor| for both dynamic bodies of every joint
-  // (dynamic[body] != 0: World::Impl::dynamic_body)
-  // (tension: the magnitude of its linear impulse, its kind's tension()); this thread's share,
-  // ending at a team barrier.
+  // (tension: the magnitude of its linear impulse, its kind's tension(); a body is dynamic when
+  // dynamic[body] != 0, World::Impl::dynamic_body); this thread's share, ending at a team
+  // barrier.
   virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints,
                                             const std::vector<std::uint8_t>& dynamic, double factor,
                                             std::vector<double>& extra,
