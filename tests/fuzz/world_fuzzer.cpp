@@ -73,6 +73,22 @@ softstep::JointFrame frame(FuzzedDataProvider& in) {
   return f;
 }
 
+// SOFTSTEP_FUZZ_VERBOSE=1 prints every accepted call's kind and the bodies after each step,
+// for replaying a crash input by hand.
+bool verbose() {
+  static const bool on = std::getenv("SOFTSTEP_FUZZ_VERBOSE") != nullptr;
+  return on;
+}
+
+void print_frame(const char* name, const softstep::JointFrame& f) {
+  std::fprintf(
+      stderr,
+      "  %s anchor (%.17g %.17g %.17g) axis (%.17g %.17g %.17g) reference (%.17g %.17g %.17g)\n",
+      name, f.local_anchor.x(), f.local_anchor.y(), f.local_anchor.z(), f.local_axis.x(),
+      f.local_axis.y(), f.local_axis.z(), f.local_reference.x(), f.local_reference.y(),
+      f.local_reference.z());
+}
+
 // Both frames: from frames_at (valid when the inputs are) or drawn one by one.
 void frames(FuzzedDataProvider& in, softstep::World& w, BodyId a, BodyId b,
             softstep::JointFrame& fa, softstep::JointFrame& fb) {
@@ -83,6 +99,10 @@ void frames(FuzzedDataProvider& in, softstep::World& w, BodyId a, BodyId b,
   } else {
     fa = frame(in);
     fb = frame(in);
+  }
+  if (verbose()) {
+    print_frame("frame_a", fa);
+    print_frame("frame_b", fb);
   }
 }
 
@@ -121,6 +141,16 @@ void swing_twist_parts(FuzzedDataProvider& in, softstep::SwingTwistJointDef& d) 
   d.spring.target = softstep::Quaternion(value(in), value(in), value(in), value(in));
   d.motor.enabled = in.ConsumeBool();
   d.motor.max_torque = value(in);
+  if (verbose()) {
+    const softstep::Quaternion& t = d.spring.target;
+    std::fprintf(stderr,
+                 "  cone %d %.17g %.17g twist %d %.17g %.17g spring %.17g Hz %.17g target "
+                 "(%.17g %.17g %.17g %.17g) motor %d %.17g\n",
+                 int(d.cone.enabled), d.cone.half_angle_x, d.cone.half_angle_y,
+                 int(d.twist.enabled), d.twist.lower, d.twist.upper, d.spring.spring.hertz,
+                 d.spring.spring.damping_ratio, t.x(), t.y(), t.z(), t.w(), int(d.motor.enabled),
+                 d.motor.max_torque);
+  }
 }
 
 // Changes one part of a revolute or prismatic definition (or a weld's springs or frames).
@@ -172,13 +202,6 @@ void check_finite(const softstep::World& w, const std::vector<BodyId>& bodies) {
 }
 
 }  // namespace
-
-// SOFTSTEP_FUZZ_VERBOSE=1 prints every accepted call's kind and the bodies after each step,
-// for replaying a crash input by hand.
-bool verbose() {
-  static const bool on = std::getenv("SOFTSTEP_FUZZ_VERBOSE") != nullptr;
-  return on;
-}
 
 void dump(const softstep::World& w, const std::vector<BodyId>& bodies) {
   for (BodyId b : bodies) {

@@ -211,6 +211,29 @@ TEST(SwingTwist, HoldsTheConeNearTheSingularSwing) {
   EXPECT_LT(largest, 3.1 + rigid_row_bound(alpha, kDt / 4) + 1e-3);
 }
 
+// The narrowest cone accepted (1e-6 rad, swing_twist.hpp), the limb started 2.4 degrees and
+// 0.06 degrees short of the singular swing, where the cone row's float products are largest
+// (1 / sin^2 of the half-angle over the swing's 1 + cos): every state stays finite and the
+// point holds. From 2.4 degrees short the cone pulls the limb in (in 1.07 s); from 0.06 degrees
+// short the float row has lost its direction and leaves it there (cones of 0.01 rad and wider
+// pull it in from there too). A 1e-45 rad cone, accepted before, gave NaN in the first step.
+TEST(SwingTwist, NarrowestConeStaysFiniteNearTheSingularSwing) {
+  for (const double start : {3.1, kPi - 1e-3}) {
+    Limb l = make_limb({true, 1e-6, 1e-6}, {});
+    l.world.set_orientation(l.limb, Quaternion(Eigen::AngleAxisd(start, Eigen::Vector3d::UnitX())));
+    for (int i = 0; i < static_cast<int>(2.0 / kDt); ++i) {
+      l.world.step(kDt);
+      const BodyState b = l.world.body(l.limb);
+      ASSERT_TRUE(b.angular_velocity.allFinite() && b.orientation.coeffs().allFinite())
+          << start << " rad, step " << i;
+      ASSERT_LT(l.world.joint_reading(l.joint).error, 1e-3) << start << " rad, step " << i;
+    }
+    if (start == 3.1) {
+      EXPECT_LT(l.world.joint_reading(l.joint).swing, 1e-5);
+    }
+  }
+}
+
 // Without a cone a spinning limb tumbles through the 180-degree swing again and again, its
 // twist held in +-0.3 rad. Where the twist is undefined the twist rows fade out instead of
 // kicking: the joint may not add energy (the kinetic energy after 3 s is at most what it

@@ -175,9 +175,13 @@ JointSlot SwingTwistKind::make_slot(const World::Impl& w, std::string_view call,
   for (const auto& [name, value] : {std::pair{".cone.half_angle_x", def.cone.half_angle_x},
                                     {".cone.half_angle_y", def.cone.half_angle_y}}) {
     validation::finite(call, prefix + name, value);
-    if (def.cone.enabled && !(value > 0.0 && value <= kPi)) {
-      validation::reject(call, prefix + name, validation::format(value),
-                         "must lie in (0, pi] (rad)");
+    // The kernel's cone row scales by 1 / sin^2(half_angle / 2) in float: below kMinPositive
+    // its products overflow near a 180-degree swing (the fuzzer: a 1e-45 rad cone gave NaN
+    // bodies). A narrower cone is a fixed swing: a revolute or weld joint holds it.
+    if (def.cone.enabled && !(value >= validation::kMinPositive && value <= kPi)) {
+      validation::reject(
+          call, prefix + name, validation::format(value),
+          "must lie in [" + validation::format(validation::kMinPositive) + ", pi] (rad)");
     }
   }
   check_axis_limit(call, prefix + ".twist", def.twist);

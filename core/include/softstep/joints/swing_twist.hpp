@@ -31,7 +31,7 @@ namespace softstep {
 
 // The cone B's twist axis stays in, about A's twist axis: an ellipse of half-angles
 // half_angle_x (leaning towards A's reference x) and half_angle_y (towards A's y). Equal
-// half-angles make a circular cone. Each in (0, pi].
+// half-angles make a circular cone. Each in [1e-6, pi] (a narrower cone is a fixed swing).
 struct SwingCone {
   bool enabled = false;
   double half_angle_x = 0.0;  // rad
