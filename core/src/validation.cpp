@@ -15,8 +15,6 @@ namespace softstep::validation {
 // Gauss-Seidel pass adds; a value beyond them is rejected here rather than left to become inf
 // in a kernel. (The fuzzer found a world of 1e18 kg, 1e18 m/s and dt 68 s, each accepted
 // under the earlier +-1e18 bound, whose products turned a body NaN.)
-constexpr double kMinMass = 1e-9;  // kg
-constexpr double kMaxMass = 1e15;
 constexpr double kMinInertia = 1e-15;  // kg m^2
 constexpr double kMaxInertia = 1e24;
 // The largest principal moment over the smallest. The solver holds the world-frame inverse

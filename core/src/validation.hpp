@@ -20,6 +20,8 @@ inline constexpr double kMaxMagnitude = 1e9;
 // The smallest positive frequency or speed: below it float's 1/(h omega)^2 terms overflow.
 inline constexpr double kMinPositive = 1e-6;
 inline constexpr double kMaxSpeedLimit = 1e6;  // m/s, the largest max_linear_speed
+inline constexpr double kMinMass = 1e-9;       // kg, a dynamic body's (and a wheel's sprung mass)
+inline constexpr double kMaxMass = 1e15;
 inline constexpr double kMinSubstep = 1e-9;    // s
 inline constexpr double kMaxSubstep = 1e3;     // s
 

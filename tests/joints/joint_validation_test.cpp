@@ -296,6 +296,8 @@ TEST(JointValidation, WheelSprungMassAndSteering) {
   };
   check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = 0.0; }, "sprung_mass", "0");
   check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = -300.0; }, "sprung_mass", "-300");
+  // Positive but below a body's smallest mass (1e-9 kg): its float spring overflowed to NaN.
+  check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = 1e-40; }, "sprung_mass", "1e-40");
   check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = kNan; }, "sprung_mass", "nan");
   check([](JointFixture&, WheelJointDef& d) { d.sprung_mass = 2e9; }, "sprung_mass", "2e+09");
   check([](JointFixture&, WheelJointDef& d) { d.steering = kInf; }, "steering", "inf");

@@ -160,6 +160,30 @@ TEST(WheelSteering, TurnsTheAxleByTheSetAngle) {
   EXPECT_EQ(w->world.joint_def<WheelJointDef>(w->joint).steering, -0.5);
 }
 
+// The smallest sprung mass a soft spring accepts (1e-9 kg, a body's smallest mass), at the
+// softest and stiffest frequencies and at the smallest, a game's and the largest sub-step,
+// the wheel bounced along its suspension: every state stays finite. (Positive masses below
+// it were accepted before, and 1e-40 kg turned the bodies to NaN in the first step: the float
+// spring's 1 / (h (h k + c)) overflowed.)
+TEST(WheelJoint, SmallestSprungMassStaysFinite) {
+  for (const double hertz : {1e-6, 2.0, 1e9}) {
+    for (const double dt : {4e-9, kDt, 4e3}) {
+      auto w = lone_wheel({});
+      w->def.sprung_mass = 1e-9;
+      w->def.spring.spring = Spring::soft(hertz, 0.0);
+      w->world.set_joint(w->joint, w->def);
+      w->world.set_linear_velocity(w->wheel, {0.0, 1.0, 0.0});
+      for (int i = 0; i < 20; ++i) {
+        w->world.step(dt);
+        const BodyState b = w->world.body(w->wheel);
+        ASSERT_TRUE(b.position.allFinite() && b.linear_velocity.allFinite() &&
+                    b.angular_velocity.allFinite())
+            << hertz << " Hz, dt " << dt << " s, step " << i;
+      }
+    }
+  }
+}
+
 // The Def comes back as stored (axes normalized), through create_joint and joint_def.
 TEST(WheelJoint, JointDefRoundTrips) {
   auto w = lone_wheel({true, 3.0, 7.0});

@@ -85,10 +85,13 @@ JointSlot WheelKind::make_slot(const World::Impl& w, std::string_view call, cons
   if (def.spring.spring.is_free() || def.spring.spring.is_absolute()) {
     // An absolute spring gives its k and c itself: the sprung mass is not used.
     validation::non_negative(call, prefix + ".sprung_mass", def.sprung_mass);
-  } else if (!(def.sprung_mass > 0.0)) {
+  } else if (!(def.sprung_mass >= validation::kMinMass)) {
+    // Below a body's smallest mass the float spring's 1 / (h (h k + c)) overflows (the fuzzer's
+    // kind of value: 1e-40 kg gave NaN bodies in the first step).
     validation::reject(call, prefix + ".sprung_mass", validation::format(def.sprung_mass),
-                       "must be > 0 with a soft spring: the spring's hertz refers to it (the "
-                       "chassis mass over its wheels)");
+                       "must be >= " + validation::format(validation::kMinMass) +
+                           " kg with a soft spring: the spring's hertz refers to it (the chassis "
+                           "mass over its wheels)");
   }
   if (def.sprung_mass > validation::kMaxMagnitude) {
     validation::reject(call, prefix + ".sprung_mass", validation::format(def.sprung_mass),

@@ -16,7 +16,8 @@
 // damping are k = sprung_mass (2 pi hertz)^2 and c = 2 sprung_mass damping_ratio (2 pi hertz),
 // so the car bounces at `hertz` with `damping_ratio` whatever its wheels weigh. (The row's own
 // effective mass is dominated by the light wheel: a frequency relative to it would give a far
-// softer spring, and the car would sink.) A soft spring needs sprung_mass > 0, unless it is
+// softer spring, and the car would sink.) A soft spring needs sprung_mass in [1e-9, 1e9] kg (a
+// body's smallest mass: below it the float spring overflows), unless it is
 // given in absolute units: Spring::absolute(k, c) in N/m and N s/m is the chassis's spring
 // itself (sprung_mass is then unused, >= 0), the same path and the same damping correction
 // as k = sprung_mass omega^2, c = 2 sprung_mass zeta omega (wheel_joint_kernel.hpp). The spring's
@@ -39,7 +40,7 @@ struct WheelJointDef {
   JointFrame frame_a;  // suspension axis, axle at zero steering, wheel centre at zero travel
   JointFrame frame_b;  // the wheel's axle (reference) and centre (anchor)
   AxisSpring spring;   // suspension; target: the unloaded travel, m
-  double sprung_mass = 0.0;  // kg the spring carries, > 0 when the spring is soft
+  double sprung_mass = 0.0;  // kg the spring carries, >= 1e-9 when the spring is soft
   AxisLimit limit;           // travel, m
   AngularMotor motor;        // spin of the wheel about the axle relative to the chassis, rad/s
   double steering = 0.0;     // rad, the axle turned about the suspension axis (right-handed)
