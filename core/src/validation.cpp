@@ -146,12 +146,15 @@ void spring(std::string_view call, std::string_view field, const Spring& s) {
            "must be SpringUnits::Relative or SpringUnits::Absolute");
   }
   if (s.is_absolute()) {
-    // The same bound as every other magnitude: c + h k and a stay finite in float.
+    // The same bounds as every other magnitude: c + h k and a stay finite in float, and so
+    // does 1 / (h (c + h k)): a positive k or c below kMinPositive overflowed it (1e-40 N/m
+    // turned revolute, prismatic, wheel and distance joints' bodies NaN in the first step).
     for (const auto& [name, value] : {std::pair{".absolute_stiffness", s.absolute_stiffness},
                                       std::pair{".absolute_damping", s.absolute_damping}}) {
-      if (!(std::isfinite(value) && value >= 0.0 && value <= kMaxMagnitude)) {
+      if (!(std::isfinite(value) && (value == 0.0 || value >= kMinPositive) &&
+            value <= kMaxMagnitude)) {
         reject(call, std::string(field) + name, format(value),
-               "must be finite, >= 0 and <= " + format(kMaxMagnitude));
+               "must be 0 or in [" + format(kMinPositive) + ", " + format(kMaxMagnitude) + "]");
       }
     }
     if (s.hertz != 0.0 || s.damping_ratio != 0.0) {

@@ -297,6 +297,13 @@ TEST(AbsoluteSpring, BadValuesAndJointsThatTakeNoAbsoluteUnitsAreRejected) {
   test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(1.0, nan)),
                                           "PrismaticJointDef.spring.spring.absolute_damping",
                                           "nan");
+  // Positive but below 1e-6: 1 / (h (c + h k)) overflowed float and the bodies turned NaN.
+  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(1e-40, 0.0)),
+                                          "PrismaticJointDef.spring.spring.absolute_stiffness",
+                                          "1e-40");
+  test::expect_rejected_on<SpringFixture>(make_fixture, slider_with(Spring::absolute(0.0, 1e-40)),
+                                          "PrismaticJointDef.spring.spring.absolute_damping",
+                                          "1e-40");
   Spring stray = Spring::soft(2.0, 0.1);
   stray.absolute_stiffness = 5.0;  // a relative spring with an absolute field set
   test::expect_rejected_on<SpringFixture>(

@@ -48,7 +48,7 @@ struct Spring {
   double damping_ratio = 0.0;
   SpringUnits units = SpringUnits::Relative;
   // Absolute units only (hertz and damping_ratio are then 0): k in N/m or N m/rad, c in
-  // N s/m or N m s/rad, both finite and >= 0.
+  // N s/m or N m s/rad, each 0 or in [1e-6, 1e9].
   double absolute_stiffness = 0.0;
   double absolute_damping = 0.0;
 
@@ -56,7 +56,7 @@ struct Spring {
   static Spring free() { return {0.0, 0.0}; }
   static Spring soft(double hertz, double damping_ratio) { return {hertz, damping_ratio}; }
   // A spring in absolute units (see the top): stiffness k and damping c, kept as given (the
-  // joint that takes it checks them: finite and >= 0, naming the field).
+  // joint that takes it checks them: each 0 or in [1e-6, 1e9], naming the field).
   static Spring absolute(double stiffness, double damping) {
     return {0.0, 0.0, SpringUnits::Absolute, stiffness, damping};
   }
