@@ -89,6 +89,15 @@ void print_frame(const char* name, const softstep::JointFrame& f) {
       f.local_reference.z());
 }
 
+void print_axis_controls(const softstep::AxisLimit& limit, bool motor_on, double motor_speed,
+                         double motor_max, const softstep::AxisSpring& spring) {
+  if (!verbose()) return;
+  std::fprintf(stderr,
+               "  limit %d %.17g %.17g motor %d %.17g %.17g spring %.17g Hz %.17g target %.17g\n",
+               int(limit.enabled), limit.lower, limit.upper, int(motor_on), motor_speed, motor_max,
+               spring.spring.hertz, spring.spring.damping_ratio, spring.target);
+}
+
 // Both frames: from frames_at (valid when the inputs are) or drawn one by one.
 void frames(FuzzedDataProvider& in, softstep::World& w, BodyId a, BodyId b,
             softstep::JointFrame& fa, softstep::JointFrame& fb) {
@@ -207,11 +216,14 @@ void dump(const softstep::World& w, const std::vector<BodyId>& bodies) {
   for (BodyId b : bodies) {
     if (!w.is_valid(b)) continue;
     const softstep::BodyState s = w.body(b);
-    std::fprintf(stderr, "  body %u type %d m %g p (%g %g %g) v (%g %g %g) w (%g %g %g) I00 %g\n",
-                 b.index, static_cast<int>(s.type), s.mass, s.position.x(), s.position.y(),
-                 s.position.z(), s.linear_velocity.x(), s.linear_velocity.y(),
-                 s.linear_velocity.z(), s.angular_velocity.x(), s.angular_velocity.y(),
-                 s.angular_velocity.z(), s.inertia(0, 0));
+    std::fprintf(
+        stderr,
+        "  body %u type %d m %g p (%.17g %.17g %.17g) q (%.17g %.17g %.17g %.17g) v (%.17g "
+        "%.17g %.17g) w (%.17g %.17g %.17g) I00 %g\n",
+        b.index, static_cast<int>(s.type), s.mass, s.position.x(), s.position.y(), s.position.z(),
+        s.orientation.x(), s.orientation.y(), s.orientation.z(), s.orientation.w(),
+        s.linear_velocity.x(), s.linear_velocity.y(), s.linear_velocity.z(), s.angular_velocity.x(),
+        s.angular_velocity.y(), s.angular_velocity.z(), s.inertia(0, 0));
   }
 }
 
@@ -370,6 +382,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             j.limit = limit(in);
             j.motor = motor<softstep::AngularMotor>(in);
             j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
+            print_axis_controls(j.limit, j.motor.enabled, j.motor.speed, j.motor.max_torque,
+                                j.spring);
             joints.push_back(world.create_joint(j));
           } else if (type == 1) {
             softstep::PrismaticJointDef j;
@@ -379,6 +393,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             j.limit = limit(in);
             j.motor = motor<softstep::LinearMotor>(in);
             j.spring = in.ConsumeBool() ? softstep::AxisSpring{} : axis_spring(in);
+            print_axis_controls(j.limit, j.motor.enabled, j.motor.speed, j.motor.max_force,
+                                j.spring);
             joints.push_back(world.create_joint(j));
           } else if (type == 5) {
             softstep::SwingTwistJointDef j;
