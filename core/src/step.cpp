@@ -145,7 +145,7 @@ void World::Impl::geometric_inertia(float h, double impulse_substep,
   if (share.thread == 0) extra_inertia_on = true;
   // |force| = |impulse of a sub-step| / that sub-step
   const double t = std::max(h, kGeometricTimeFloor);
-  lane_solver->accumulate_geometric_inertia(joints, dynamic_body, t * t / impulse_substep,
+  lane_solver->accumulate_geometric_inertia(joints, bodies, dynamic_body, t * t / impulse_substep,
                                             extra_inertia, share);
 }
 

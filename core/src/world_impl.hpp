@@ -133,9 +133,10 @@ class LaneSolver {
   virtual bool needs(Pass pass) const = 0;  // some variant in the lanes runs this pass
   // extra[body] += factor * tension * |local anchor| for both dynamic bodies of every joint
   // (tension: the magnitude of its linear impulse, its kind's tension(); a body is dynamic when
-  // dynamic[body] != 0, World::Impl::dynamic_body); this thread's share, ending at a team
-  // barrier.
+  // dynamic[body] != 0, World::Impl::dynamic_body; a slider's A takes the lever from its centre
+  // to B's anchor, read from `bodies`); this thread's share, ending at a team barrier.
   virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints,
+                                            const std::vector<BodySlot>& bodies,
                                             const std::vector<std::uint8_t>& dynamic, double factor,
                                             std::vector<double>& extra,
                                             const solver::Share& share) const = 0;

@@ -147,6 +147,41 @@ TEST(Prismatic, MotorReachesItsSpeedAndNeverExceedsItsForce) {
   EXPECT_NEAR(s.world.joint_reading(s.joint).motor_impulse, 2.0 * kG * h, 1e-3 * 2.0 * kG * h);
 }
 
+// The slider's body as A, the static ground as B: a 1 kN motor drives a 0.5 kg, 0.05 kg m^2
+// body out along its own axis with the rigid rows soft (rigid_hertz 0.5). The motor's force
+// acts on A at B's anchor, further out every step, and turns A about it like a spring of
+// sqrt(F d / I) that the sub-step cannot follow: the geometric inertia must take A's lever to
+// B's anchor (its own anchor, at its centre, gave none; the fuzzer's 1e6 N motor grew the
+// body's speed 10x a step to NaN). With it A does not turn; without it (the setting off) the
+// body blows up, the failure it prevents.
+TEST(Prismatic, MotorFarAlongALightBodysAxisNeedsTheGeometricInertia) {
+  const auto largest_spin = [](bool geometric_stiffness) {
+    WorldSettings settings;
+    settings.gravity.setZero();
+    settings.rigid_hertz = 0.5;
+    settings.geometric_stiffness = geometric_stiffness;
+    World world(settings);
+    const Eigen::Vector3d axis = Eigen::Vector3d(1.0, 2.0, 2.0).normalized();
+    const BodyId ground = test::static_body(world);
+    const BodyId body = test::dynamic_body(world, axis, 0.5, Eigen::Matrix3d::Identity() * 0.05);
+    PrismaticJointDef d =
+        scenes::joint_at<PrismaticJointDef>(world, body, ground, Eigen::Vector3d::Zero(), axis);
+    d.frame_a.local_anchor.setZero();  // A's anchor at its centre, 1 m from B's
+    d.motor = {true, 1e6, 1e3};
+    world.create_joint(d);
+    double largest = 0.0;
+    for (int i = 0; i < 120; ++i) {
+      world.step(kDt);
+      const double spin = world.body(body).angular_velocity.norm();
+      if (!std::isfinite(spin)) return spin;
+      largest = std::max(largest, spin);
+    }
+    return largest;
+  };
+  EXPECT_LT(largest_spin(true), 1e-3);
+  EXPECT_FALSE(largest_spin(false) < 1.0) << "without the geometric inertia it held";
+}
+
 TEST(Prismatic, JointDefRoundTrips) {
   World world;
   const BodyId a = test::static_body(world);

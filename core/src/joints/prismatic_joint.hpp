@@ -14,6 +14,9 @@ struct PrismaticKind {
   using Group = simd::PrismaticJointGroup<W>;
   // lateral lock (2), rotation lock (3), then the axis controls: lower, upper, motor, spring
   static constexpr int kImpulses = 9;
+  // A slider: the linear rows act on A at B's anchor, which runs along A's axis, so A's lever
+  // for the geometric inertia runs from A's centre to B's anchor (lane_solver.cpp).
+  static constexpr bool kActsOnAAtAnchorB = true;
   // One kernel: groups are packed by signature (limit, motor, spring) and skip what they lack.
   SOFTSTEP_SIGNATURE_KIND_PASSES(prismatic);
   static std::uint32_t signature(const JointSlot& j);

@@ -15,6 +15,9 @@ struct WheelKind {
   // lateral lock (2), axle lock (2), one unused, then the axis controls at kAxisImpulses:
   // lower, upper (travel limits), motor (the spin motor), spring (the suspension)
   static constexpr int kImpulses = 9;
+  // A slider: the linear rows act on A at B's anchor, which runs along A's axis, so A's lever
+  // for the geometric inertia runs from A's centre to B's anchor (lane_solver.cpp).
+  static constexpr bool kActsOnAAtAnchorB = true;
   // One kernel: groups are packed by signature (limits, spin motor, spring) and skip what
   // they lack.
   SOFTSTEP_SIGNATURE_KIND_PASSES(wheel);
