@@ -16,9 +16,9 @@ namespace softstep::tool {
 // The rows the manifolds bring to one pass: per point the normal row and, with friction > 0,
 // two tangent rows; per manifold with rolling resistance > 0 three angular rows. Only the
 // manifolds softstep solves count: those with an awake dynamic body (a manifold whose bodies
-// are all static or asleep is left out of the lanes). Counted before the step that takes them.
-// The contact rows of a pass over these manifolds (those touching an awake dynamic body), and
-// how many of them are friction rows.
+// are all static or asleep is left out of the lanes). Counted before the step that takes them;
+// `friction` is how many of `all` are tangent rows (a solve pass without friction leaves them
+// out: contact_friction_while_solving).
 struct ContactRows {
   double all = 0.0, friction = 0.0;
 };

@@ -73,7 +73,9 @@ int profile_recording(const ProfileOptions& o) {
     bodies = world.body_count();
     joints = world.joint_count();
     threads = p.threads;
-    contacts.add_step(world, {std::numeric_limits<double>::quiet_NaN(), 0.0});
+    // A recording holds no manifolds to count rows from: unknown, as profile_command's NaN.
+    constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
+    contacts.add_step(world, {kUnknown, kUnknown});
   };
   ReplayReport report;
   try {
