@@ -476,7 +476,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       if (capturing && sub == 0 && share.thread == 0) w.capture_solved();
       if (planned(PlanStage::IntegratePositions)) {
         stage(Stage::IntegratePositions, [&] {
-          solver.integrate_positions(w.solver_bodies, h, share);
+          solver.integrate_positions(w.solver_bodies, ctx, share);
           solver::team_barrier(share);
         });
       }

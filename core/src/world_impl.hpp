@@ -157,7 +157,8 @@ class LaneSolver {
   virtual void integrate_velocities(SolverBodies& bodies, const simd::SubstepContext& ctx,
                                     bool gravity, bool damping, bool torque,
                                     const solver::Share& share) = 0;
-  virtual void integrate_positions(SolverBodies& bodies, float h, const solver::Share& share) = 0;
+  virtual void integrate_positions(SolverBodies& bodies, const simd::SubstepContext& ctx,
+                                   const solver::Share& share) = 0;
 };
 
 // The slot of a live body or joint; rejects unknown and destroyed ids naming `field` (world.cpp).

@@ -75,7 +75,9 @@ struct WorldSettings {
   // the stabilization away (README, "The alignment mode").
   bool geometric_stiffness = true;
   // Bodies move no faster than this, m/s, in (0, 1e6]: the solver clamps dynamic bodies' speed
-  // each sub-step, and rejects a velocity above it. It keeps the float solver's products in
+  // each sub-step, as velocities are integrated and again before positions move (the relax
+  // pass after that may leave a velocity above it, which the next sub-step clamps), and
+  // rejects a velocity above it. It keeps the float solver's products in
   // range (README, "Input ranges"); 10 km/s is above anything a game throws.
   double max_linear_speed = 1e4;
   // The spin limit: a dynamic body turns at most this far per sub-step, rad, in (0, pi/2];

@@ -65,8 +65,9 @@ static inline Slice slice_of(std::size_t n, const Share& s) {
 using IntegrateVelocities = void (*)(simd::VelocityRecord*, const simd::ForceRecord*,
                                      const std::int32_t* blocks, std::size_t count,
                                      const simd::SubstepContext&);
-using IntegratePositions = void (*)(simd::DeltaRecord*, const simd::VelocityRecord*,
-                                    const std::int32_t* blocks, std::size_t count, float h);
+using IntegratePositions = void (*)(simd::DeltaRecord*, simd::VelocityRecord*,
+                                    const std::int32_t* blocks, std::size_t count,
+                                    const simd::SubstepContext&);
 inline constexpr int kBodyBlock = 8;
 
 struct BodyKernels {

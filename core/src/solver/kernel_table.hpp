@@ -29,11 +29,12 @@ BodyKernels make_body_kernels() {
           integrate_velocity_blocks<L, (I & 4) != 0, (I & 2) != 0, (I & 1) != 0>),
      ...);
   }(std::make_integer_sequence<int, 8>());
-  t.integrate_positions = [](simd::DeltaRecord* d, const simd::VelocityRecord* v,
-                             const std::int32_t* blocks, std::size_t count, float h) {
+  t.integrate_positions = [](simd::DeltaRecord* d, simd::VelocityRecord* v,
+                             const std::int32_t* blocks, std::size_t count,
+                             const simd::SubstepContext& ctx) {
     for (std::size_t i = 0; i < count; ++i) {
       for (int lane = 0; lane < kBodyBlock; lane += simd::kWidth<L>) {
-        simd::integrate_positions<L>(d, v, blocks[i] + lane, h);
+        simd::integrate_positions<L>(d, v, blocks[i] + lane, ctx);
       }
     }
   };

@@ -299,10 +299,11 @@ class LaneSolverImpl final : public LaneSolver {
         ctx);
   }
 
-  void integrate_positions(SolverBodies& b, float h, const solver::Share& share) override {
+  void integrate_positions(SolverBodies& b, const simd::SubstepContext& ctx,
+                           const solver::Share& share) override {
     const solver::Slice mine = solver::slice_of(b.blocks.size(), share);
     kernels_.bodies.integrate_positions(b.delta.data(), b.velocity.data(),
-                                        b.blocks.data() + mine.begin, mine.end - mine.begin, h);
+                                        b.blocks.data() + mine.begin, mine.end - mine.begin, ctx);
   }
 
  private:

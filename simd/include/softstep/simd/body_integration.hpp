@@ -21,8 +21,13 @@ struct alignas(32) ForceRecord {
 // Scales (x, y, z) down to length `limit` where it is longer; lanes within it are untouched,
 // bit for bit.
 template <class L>
+SOFTSTEP_INLINE L squared_norm(const L& x, const L& y, const L& z) {
+  return fmadd(x, x, fmadd(y, y, z * z));
+}
+
+template <class L>
 SOFTSTEP_INLINE void clamp_norm(L& x, L& y, L& z, L limit) {
-  const L n2 = fmadd(x, x, fmadd(y, y, z * z));
+  const L n2 = squared_norm(x, y, z);
   const auto over = n2 > limit * limit;
   const L scale = select(over, limit / sqrt_lanes(select(over, n2, L(1.0f))), L(1.0f));
   x = x * scale;
@@ -65,14 +70,27 @@ SOFTSTEP_INLINE void integrate_velocities(VelocityRecord* velocity, const ForceR
   scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));
 }
 
+// The speed and spin limits bind again here, after the solve: rows that cannot all hold (a
+// motor driving against a rigid joint, a joint to a kinematic body whirling its anchor at
+// 30 km/s), softened so that the warm start carries large impulses, pushed a light body's
+// velocity past the limits in the solve, and positions moving at that speed grew it 10x a
+// step to NaN. The clamped velocity is stored (the relax pass starts from it), only where a
+// lane was clamped: the store costs as much as the rest of this pass.
 template <class L>
-SOFTSTEP_INLINE void integrate_positions(DeltaRecord* delta, const VelocityRecord* velocity,
-                                         std::int32_t first, float h) {
+SOFTSTEP_INLINE void integrate_positions(DeltaRecord* delta, VelocityRecord* velocity,
+                                         std::int32_t first, const SubstepContext& ctx) {
   std::int32_t index[kWidth<L>];
   for (int i = 0; i < kWidth<L>; ++i) index[i] = first + i;
-  const Rows8<L> v = gather_rows<L>(velocity, index);
+  Rows8<L> v = gather_rows<L>(velocity, index);
+  const L linear_limit(ctx.max_linear_speed), angular_limit(ctx.max_angular_speed);
+  if (any_lane(squared_norm(v.r[0], v.r[1], v.r[2]) > linear_limit * linear_limit ||
+               squared_norm(v.r[3], v.r[4], v.r[5]) > angular_limit * angular_limit)) {
+    clamp_norm(v.r[3], v.r[4], v.r[5], angular_limit);
+    clamp_norm(v.r[0], v.r[1], v.r[2], linear_limit);
+    scatter_rows<L>(velocity, index, v, L(0.0f) == L(0.0f));
+  }
   Rows8<L> d = gather_rows<L>(delta, index);
-  const L hl(h);
+  const L hl(ctx.h);
   for (int k = 0; k < 3; ++k) d.r[k] = fmadd(hl, v.r[k], d.r[k]);
   const Quat<L> q = integrate_rotation(Quat<L>{d.r[3], d.r[4], d.r[5], d.r[6]},
                                        Vec3<L>{v.r[3], v.r[4], v.r[5]}, hl);

@@ -138,6 +138,15 @@ SOFTSTEP_INLINE xsimd::batch<float, A> sqrt_lanes(const xsimd::batch<float, A>& 
   return xsimd::sqrt(a);
 }
 
+// Whether some lane of a comparison holds: lets a kernel skip work that no lane needs.
+SOFTSTEP_INLINE bool any_lane(bool m) {
+  return m;
+}
+template <class A>
+SOFTSTEP_INLINE bool any_lane(const xsimd::batch_bool<float, A>& m) {
+  return xsimd::any(m);
+}
+
 // Generic load: `load<L>(p)` reads kWidth<L> consecutive, aligned floats.
 template <class L>
 SOFTSTEP_INLINE L load(const float* p) {
