@@ -5,6 +5,7 @@
 //   - nothing crashes and no sanitizer reports (the build adds address + undefined).
 #include <fuzzer/FuzzedDataProvider.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -32,11 +33,13 @@ Eigen::Vector3d vec(FuzzedDataProvider& in) {
 }
 
 softstep::Spring spring(FuzzedDataProvider& in) {
-  switch (in.ConsumeIntegralInRange<int>(0, 3)) {
+  switch (in.ConsumeIntegralInRange<int>(0, 4)) {
     case 0:
       return softstep::Spring::rigid();
     case 1:
       return softstep::Spring::free();
+    case 2:
+      return softstep::Spring::absolute(value(in), value(in));  // taken by one-row springs only
     default:
       return softstep::Spring::soft(value(in), value(in));
   }
@@ -192,6 +195,60 @@ void mutate(FuzzedDataProvider& in, Def& d) {
       }
       break;
   }
+}
+
+// Up to four manifolds between random bodies, each field valid or not: a normal along y, a
+// random unit or non-unit one; 0 to 5 points; separations mostly within a few centimetres.
+std::vector<softstep::ContactManifold> manifolds(FuzzedDataProvider& in,
+                                                 const std::vector<BodyId>& bodies) {
+  std::vector<softstep::ContactManifold> list(in.ConsumeIntegralInRange<std::size_t>(1, 4));
+  for (softstep::ContactManifold& m : list) {
+    m.body_a = pick(in, bodies);
+    m.body_b = pick(in, bodies);
+    switch (in.ConsumeIntegralInRange<int>(0, 2)) {
+      case 0:
+        break;  // +y
+      case 1:
+        m.normal = vec(in).normalized();
+        break;
+      default:
+        m.normal = vec(in);
+        break;
+    }
+    m.point_count = in.ConsumeIntegralInRange<int>(0, softstep::kMaxContactPoints + 1);
+    for (softstep::ContactPoint& p : m.points) {
+      if (in.ConsumeBool()) p.anchor_a = vec(in);
+      if (in.ConsumeBool()) p.anchor_b = vec(in);
+      p.separation =
+          in.ConsumeBool() ? in.ConsumeFloatingPointInRange<double>(-0.1, 0.05) : value(in);
+      p.feature_id = in.ConsumeIntegral<std::uint8_t>();
+    }
+    if (in.ConsumeBool()) m.friction = value(in);
+    if (in.ConsumeBool()) m.restitution = value(in);
+    if (in.ConsumeBool()) m.rolling_resistance = value(in);
+    if (in.ConsumeBool()) m.tangent_speed = {value(in), value(in)};
+    m.key = in.ConsumeIntegral<std::uint8_t>();
+    if (in.ConsumeBool()) m.radius_a = value(in);
+    if (in.ConsumeBool()) m.radius_b = value(in);
+    if (verbose()) {
+      std::fprintf(stderr,
+                   "  manifold %u-%u normal (%.17g %.17g %.17g) points %d friction %.17g "
+                   "restitution %.17g rolling %.17g tangent speed (%.17g %.17g) radii %.17g "
+                   "%.17g\n",
+                   m.body_a.index, m.body_b.index, m.normal.x(), m.normal.y(), m.normal.z(),
+                   m.point_count, m.friction, m.restitution, m.rolling_resistance,
+                   m.tangent_speed.x(), m.tangent_speed.y(), m.radius_a, m.radius_b);
+      for (int i = 0; i < std::min(m.point_count, softstep::kMaxContactPoints); ++i) {
+        const softstep::ContactPoint& p = m.points[static_cast<std::size_t>(i)];
+        std::fprintf(stderr,
+                     "    point a (%.17g %.17g %.17g) b (%.17g %.17g %.17g) separation %.17g "
+                     "feature %u\n",
+                     p.anchor_a.x(), p.anchor_a.y(), p.anchor_a.z(), p.anchor_b.x(), p.anchor_b.y(),
+                     p.anchor_b.z(), p.separation, p.feature_id);
+      }
+    }
+  }
+  return list;
 }
 
 [[noreturn]] void fail(const char* what) {
@@ -358,14 +415,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           s.time_to_sleep = value(in);
           s.rigid_hertz = value(in);
           s.simd = static_cast<softstep::SimdWidth>(in.ConsumeIntegralInRange<int>(0, 3));
+          s.solver = static_cast<softstep::SolverMode>(in.ConsumeIntegralInRange<int>(0, 2));
+          s.geometric_stiffness = in.ConsumeBool();
+          if (in.ConsumeBool()) {
+            s.contact.hertz = value(in);
+            s.contact.damping_ratio = value(in);
+            s.contact.max_push_out_speed = value(in);
+            s.contact.restitution_threshold = value(in);
+            s.contact.friction_while_solving = in.ConsumeBool();
+          }
           world.set_settings(s);
           if (verbose()) {
             std::fprintf(stderr,
                          "settings gravity (%g %g %g) substeps %d solve %d relax %d warm %d "
-                         "rigid_hertz %g max_speed %g\n",
+                         "rigid_hertz %g max_speed %g solver %d geometric_stiffness %d contact "
+                         "%g Hz zeta %g push-out %g restitution threshold %g friction while "
+                         "solving %d\n",
                          s.gravity.x(), s.gravity.y(), s.gravity.z(), s.substeps,
                          s.solve_iterations, s.relax_iterations, int(s.warm_start), s.rigid_hertz,
-                         s.max_linear_speed);
+                         s.max_linear_speed, static_cast<int>(s.solver), int(s.geometric_stiffness),
+                         s.contact.hertz, s.contact.damping_ratio, s.contact.max_push_out_speed,
+                         s.contact.restitution_threshold, int(s.contact.friction_while_solving));
           }
           break;
         }
@@ -487,7 +557,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
         default: {
           const double dt = in.ConsumeBool() ? 1.0 / 60.0 : value(in);
-          world.step(dt);
+          if (in.ConsumeBool()) {
+            world.step(dt);
+          } else {
+            world.step(dt, manifolds(in, bodies));
+          }
           if (verbose()) {
             std::fprintf(stderr, "step %g (substeps %d, joints %zu)\n", dt,
                          world.settings().substeps, world.joint_count());
