@@ -110,6 +110,53 @@ TEST(FloatEnvelope, SpeedIsClampedToTheLimit) {
   EXPECT_NEAR(v.y() / v.norm(), -0.8, 1e-6);
 }
 
+// Beyond ~1.8e19 m/s a speed's square leaves float: the clamp must still slow the body along
+// its direction (it set it to 0 before). Gravity at its bounds for one 1e3 s sub-step gives
+// 1e21 m/s.
+TEST(FloatEnvelope, SpeedWhoseSquareOverflowsIsClampedAlongItsDirection) {
+  World world(WorldSettings{.gravity = {6e8, -8e8, 0.0}, .substeps = 1, .max_linear_speed = 100.0});
+  BodyDef d;
+  d.gravity_scale = 1e9;
+  const BodyId body = world.create_body(d);
+  world.step(1e3);
+  const Eigen::Vector3d v = world.body(body).linear_velocity;
+  EXPECT_NEAR(v.norm(), 100.0, 1e-4);
+  EXPECT_NEAR(v.x() / v.norm(), 0.6, 1e-6);
+  EXPECT_NEAR(v.y() / v.norm(), -0.8, 1e-6);
+}
+
+// An undamped rigid row (rigid_damping_ratio 0, accepted) at the lowest rigid_hertz has
+// a = (h omega)^2 ~ 7e-16 and a feedback 1/a ~ 1.5e15; against a body of the largest inertia
+// (1e24 kg m^2) the prismatic's angular lock multiplied it past float (7e38) and both bodies
+// were NaN after one step. make_context caps the rigid and limit feedback at 1e13, where the
+// row's mass_scale a / (1 + a) is below 1e-13 and it applies nothing anyway.
+TEST(FloatEnvelope, UndampedRigidRowsAtTheLowestFrequencyStayFinite) {
+  for (double substep : {1.0 / 240.0, 1e-9}) {
+    World world(WorldSettings{.gravity = {0.0, 0.0, 0.0},
+                              .substeps = 1,
+                              .rigid_hertz = substep < 1e-6 ? 5.0 : 1e-6,
+                              .rigid_damping_ratio = 0.0});
+    BodyDef d;
+    d.inertia = Eigen::Matrix3d::Identity() * 1e24;
+    const BodyId a = world.create_body(d);
+    d.angular_velocity = {0.0, 0.0, 1.0};
+    const BodyId b = world.create_body(d);
+    PrismaticJointDef slider;
+    slider.body_a = a;
+    slider.body_b = b;
+    world.create_joint(slider);
+    for (int step = 0; step < 60; ++step) {
+      world.step(substep);
+      for (BodyId id : {a, b}) {
+        const BodyState s = world.body(id);
+        ASSERT_TRUE(s.position.allFinite() && s.orientation.coeffs().allFinite() &&
+                    s.linear_velocity.allFinite() && s.angular_velocity.allFinite())
+            << "sub-step " << substep << " s, step " << step;
+      }
+    }
+  }
+}
+
 // Rows that cannot all hold, softened to rigid_hertz 0.5 so that the warm start carries
 // large impulses from one sub-step to the next: a 0.5 kg, 0.05 kg m^2 body held by a rigid
 // ball joint to a kinematic body at the origin, its anchor 70 m from its centre, and joined

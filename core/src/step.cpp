@@ -51,6 +51,11 @@ simd::SubstepContext make_context(const WorldSettings& s, float h) {
       simd::make_softness(static_cast<float>(hertz), static_cast<float>(s.rigid_damping_ratio), h);
   ctx.limit = simd::make_softness(static_cast<float>(limit_solve_hertz(s, h)),
                                  static_cast<float>(s.rigid_damping_ratio), h);
+  // Undamped (rigid_damping_ratio 0) at the lowest frequency, a = (h omega)^2 reaches 7e-16
+  // and 1/a times a lock's effective mass (up to the largest inertia, 1e24) left float. Where
+  // 1/a > 1e13 the row's mass_scale a / (1 + a) is below 1e-13: it applies nothing either way.
+  ctx.rigid.feedback = std::min(ctx.rigid.feedback, 1e13f);
+  ctx.limit.feedback = std::min(ctx.limit.feedback, 1e13f);
   ctx.max_correction_speed = static_cast<float>(s.max_correction_speed);
   ctx.max_linear_speed = static_cast<float>(s.max_linear_speed);
   // Rounded to float before dividing, as the constant it replaced was: pi/4 gives the same

@@ -3,6 +3,8 @@
 // core adds them to the double-precision pose once per step.
 #pragma once
 
+#include <limits>
+
 #include "softstep/simd/body_records.hpp"
 #include "softstep/simd/step_context.hpp"
 
@@ -29,7 +31,18 @@ template <class L>
 SOFTSTEP_INLINE void clamp_norm(L& x, L& y, L& z, L limit) {
   const L n2 = squared_norm(x, y, z);
   const auto over = n2 > limit * limit;
-  const L scale = select(over, limit / sqrt_lanes(select(over, n2, L(1.0f))), L(1.0f));
+  L scale = select(over, limit / sqrt_lanes(select(over, n2, L(1.0f))), L(1.0f));
+  // Above ~1.8e19 the square overflows and that scale is 0, which stops a body the solve threw
+  // hard instead of slowing it along its direction. There the norm is taken of the vector
+  // scaled by 2^-66 (exact, and no square of a float can overflow after it); a lane with an
+  // infinite component still ends NaN, as it would anyway.
+  const L infinity(std::numeric_limits<float>::infinity());
+  const auto overflowed = n2 == infinity;
+  if (any_lane(overflowed)) {
+    const L tiny(0x1p-66f);
+    const L scaled_n2 = squared_norm(x * tiny, y * tiny, z * tiny);
+    scale = select(overflowed, (limit * tiny) / sqrt_lanes(scaled_n2), scale);
+  }
   x = x * scale;
   y = y * scale;
   z = z * scale;
