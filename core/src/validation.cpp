@@ -22,7 +22,11 @@ constexpr double kMaxInertia = 1e24;
 // and a double eigenvalue below ~1e-16 of the largest is rounding noise. (The fuzzer found a
 // singular tensor, [a a a; a a a; a a 1e12], accepted because its computed smallest eigenvalue
 // was noise, 3e-5 > 0; its inverse was infinite and the body turned NaN at its first joint.)
-constexpr double kMaxInertiaRatio = 1e6;
+// Not 1e6, where the bound first was: a weld or prismatic held such a body, its tensor turned
+// away from the world axes, in half of 20 random orientations it flew hundreds of metres off
+// its anchor (finite, but not held); the cliff lies between 4e5 and 6e5, and 1e5 leaves a
+// factor 4 (Validation.EveryAcceptedInertiaRatioIsHeldByALockingJoint).
+constexpr double kMaxInertiaRatio = 1e5;
 
 std::string format(double value) {
   char buffer[40];
