@@ -22,11 +22,13 @@ constexpr double kMaxInertia = 1e24;
 // and a double eigenvalue below ~1e-16 of the largest is rounding noise. (The fuzzer found a
 // singular tensor, [a a a; a a a; a a 1e12], accepted because its computed smallest eigenvalue
 // was noise, 3e-5 > 0; its inverse was infinite and the body turned NaN at its first joint.)
-// Not 1e6, where the bound first was: a weld or prismatic held such a body, its tensor turned
-// away from the world axes, in half of 20 random orientations it flew hundreds of metres off
-// its anchor (finite, but not held); the cliff lies between 4e5 and 6e5, and 1e5 leaves a
-// factor 4 (Validation.EveryAcceptedInertiaRatioIsHeldByALockingJoint).
-constexpr double kMaxInertiaRatio = 1e5;
+// Up to 1e6 a locking joint holds such a body only because the kernels invert an
+// ill-conditioned K by an LDL^T factorization (ldl_inverse_or_zero, math3.hpp): by float
+// cofactors alone, a weld or prismatic on a body of moments 6e5 or more apart, its tensor
+// turned from the world axes, let it fly hundreds of metres off its anchor in half of 20
+// random orientations (|K K^-1 - 1| reached 16; Validation.EveryAcceptedInertiaRatioIsHeld-
+// ByALockingJoint).
+constexpr double kMaxInertiaRatio = 1e6;
 
 std::string format(double value) {
   char buffer[40];

@@ -76,6 +76,41 @@ SOFTSTEP_INLINE Mat3Sym<L> rotational_mass_term(const Mat3Sym<L>& inv_i, const V
   return {dot(s0, c0), dot(s1, c1), dot(s2, c2), dot(s0, c1), dot(s0, c2), dot(s1, c2)};
 }
 
+// 1/d where d > 0, else 0 (no division by zero in the lanes that discard it).
+template <class L>
+SOFTSTEP_INLINE L reciprocal_if_positive(const L& d) {
+  const auto positive = d > L(0.0f);
+  return select(positive, L(1.0f) / select(positive, d, L(1.0f)), L(0.0f));
+}
+
+// Inverse of a symmetric matrix m = L D L^T (unit lower-triangular L, diagonal D), zero where
+// a pivot is not positive. For a positive definite m this is backward stable: its error grows
+// as cond(m) x 6e-8. The cofactors below lose every digit of the determinant once it falls to
+// ~1e-7 (their terms are of order 1): an angular lock on a body of principal moments 4e5 apart
+// came out indefinite, and the body flew off its joint.
+template <class L>
+SOFTSTEP_INLINE Mat3Sym<L> ldl_inverse_or_zero(const Mat3Sym<L>& m) {
+  const L e1 = reciprocal_if_positive(m.xx);
+  const L l21 = m.xy * e1, l31 = m.xz * e1;
+  const L d2 = m.yy - l21 * m.xy;
+  const L e2 = reciprocal_if_positive(d2);
+  const L t = m.yz - l21 * m.xz;  // d2 l32
+  const L l32 = t * e2;
+  const L d3 = m.zz - l31 * m.xz - l32 * t;
+  const L e3 = reciprocal_if_positive(d3);
+  // inverse(L)'s rows: (1, 0, 0), (a, 1, 0), (b, c, 1); m^-1 = sum_i e_i row_i^T row_i.
+  const L a = L(0.0f) - l21, c = L(0.0f) - l32, b = l21 * l32 - l31;
+  const auto ok = m.xx > L(0.0f) && d2 > L(0.0f) && d3 > L(0.0f);
+  const L keep = select(ok, L(1.0f), L(0.0f));
+  const L e3b = e3 * b, e3c = e3 * c;
+  return {keep * (e1 + e2 * a * a + e3b * b),
+          keep * (e2 + e3c * c),
+          keep * e3,
+          keep * (e2 * a + e3b * c),
+          keep * e3b,
+          keep * e3c};
+}
+
 // Inverse of a symmetric positive semi-definite matrix by cofactors, scaled first by its
 // largest diagonal entry: the determinant is a product of three entries and would leave the
 // float range (1e-38 .. 3e38) long before the entries do (a 1e13 kg body, a 1e-12 kg one).
@@ -98,7 +133,21 @@ SOFTSTEP_INLINE Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& k) {
   const L c_yy = fmadd(m.xx, m.zz, L(0.0f) - m.xz * m.xz);
   const L c_yz = fmadd(m.xy, m.xz, L(0.0f) - m.xx * m.yz);
   const L c_zz = fmadd(m.xx, m.yy, L(0.0f) - m.xy * m.xy);
-  return {c_xx * f, c_yy * f, c_zz * f, c_xy * f, c_xz * f, c_yz * f};
+  Mat3Sym<L> inverse{c_xx * f, c_yy * f, c_zz * f, c_xy * f, c_xz * f, c_yz * f};
+  // Where the scaled determinant is small (or not positive: rounding can make it so for a
+  // positive definite m) the factorization takes over. Elsewhere the cofactors stay, bit for
+  // bit: at 1e-6 their error is below ~1 %, and no joint of the golden scenes comes near it.
+  const auto ill_conditioned = usable && !(det > L(1e-6f));
+  if (any_lane(ill_conditioned)) {
+    const Mat3Sym<L> careful = ldl_inverse_or_zero(m);
+    inverse = {select(ill_conditioned, careful.xx * inv_scale, inverse.xx),
+               select(ill_conditioned, careful.yy * inv_scale, inverse.yy),
+               select(ill_conditioned, careful.zz * inv_scale, inverse.zz),
+               select(ill_conditioned, careful.xy * inv_scale, inverse.xy),
+               select(ill_conditioned, careful.xz * inv_scale, inverse.xz),
+               select(ill_conditioned, careful.yz * inv_scale, inverse.yz)};
+  }
+  return inverse;
 }
 
 // Unit quaternion (x, y, z, w).
