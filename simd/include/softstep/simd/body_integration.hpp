@@ -20,13 +20,13 @@ struct alignas(32) ForceRecord {
   float angular_acceleration[3];  // rad/s^2, world frame: inverse inertia x applied torque
 };
 
-// Scales (x, y, z) down to length `limit` where it is longer; lanes within it are untouched,
-// bit for bit.
 template <class L>
 SOFTSTEP_INLINE L squared_norm(const L& x, const L& y, const L& z) {
   return fmadd(x, x, fmadd(y, y, z * z));
 }
 
+// Scales (x, y, z) down to length `limit` where it is longer; lanes within it are untouched,
+// bit for bit.
 template <class L>
 SOFTSTEP_INLINE void clamp_norm(L& x, L& y, L& z, L limit) {
   const L n2 = squared_norm(x, y, z);

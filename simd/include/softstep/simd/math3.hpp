@@ -86,7 +86,7 @@ SOFTSTEP_INLINE L reciprocal_if_positive(const L& d) {
 // Inverse of a symmetric matrix m = L D L^T (unit lower-triangular L, diagonal D), zero where
 // a pivot is not positive. For a positive definite m this is backward stable: its error grows
 // as cond(m) x 6e-8. The cofactors below lose every digit of the determinant once it falls to
-// ~1e-7 (their terms are of order 1): an angular lock on a body of principal moments 4e5 apart
+// ~1e-7 (their terms are of order 1): an angular lock on a body of principal moments 6e5 apart
 // came out indefinite, and the body flew off its joint.
 template <class L>
 SOFTSTEP_INLINE Mat3Sym<L> ldl_inverse_or_zero(const Mat3Sym<L>& m) {
@@ -111,11 +111,11 @@ SOFTSTEP_INLINE Mat3Sym<L> ldl_inverse_or_zero(const Mat3Sym<L>& m) {
           keep * e3c};
 }
 
-// Inverse of a symmetric positive semi-definite matrix by cofactors, scaled first by its
-// largest diagonal entry: the determinant is a product of three entries and would leave the
-// float range (1e-38 .. 3e38) long before the entries do (a 1e13 kg body, a 1e-12 kg one).
-// A singular matrix (a constraint between bodies that cannot move, a padding lane) yields
-// zero, so the constraint applies no impulse instead of a NaN.
+// Inverse of a symmetric positive semi-definite matrix by cofactors (by the factorization above
+// where it is ill-conditioned), scaled first by its largest diagonal entry: the determinant is a
+// product of three entries and would leave the float range (1e-38 .. 3e38) long before the entries
+// do (a 1e13 kg body, a 1e-12 kg one). A singular matrix (a constraint between bodies that cannot
+// move, a padding lane) yields zero, so the constraint applies no impulse instead of a NaN.
 template <class L>
 SOFTSTEP_INLINE Mat3Sym<L> inverse_or_zero(const Mat3Sym<L>& k) {
   const L scale = max_lanes(k.xx, max_lanes(k.yy, k.zz));
