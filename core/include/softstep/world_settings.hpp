@@ -46,7 +46,11 @@ struct WorldSettings {
   // accuracy more cheaply than iterations, DESIGN.md); more converge each sub-step towards
   // the exact solution of its soft system, which `softstep sweep` measures.
   int solve_iterations = 1;
-  int relax_iterations = 1;  // >= 0: rigid, unbiased passes per sub-step after positions move
+  // >= 0: rigid, unbiased passes per sub-step after positions move. 0 leaves the rigid rows'
+  // position correction in the velocities: a weld or prismatic turning a body back from far
+  // off its pose then overshoots, and flings a body of moments 1e3 or more apart (README,
+  // "Settings that trade time for accuracy").
+  int relax_iterations = 1;
   // Threads a step may use: 0 = all of the machine's cores (the default), or a count >= 1.
   // Steps with fewer than 4,096 bodies and joints run on one thread, and larger ones use one
   // or all, whichever ran recent steps faster (see README). Results are bit-identical for
