@@ -102,6 +102,33 @@ TEST(Spring, KernelSoftnessMatchesApiCoefficients) {
   EXPECT_EQ(free.bias_rate, 0.0f);
 }
 
+// The softness must give back, per solve, the accumulated impulse the spring lets through:
+// mass_scale * feedback = impulse_scale = 1 / (1 + a) (softness.hpp), and so below 1. For the
+// slowest rows (a = h omega (2 zeta + h omega) down to 1e-15: rigid_hertz 1e-6, undamped
+// springs of mHz, nanosecond sub-steps) mass_scale was 1 - 1/(1 + a) in float, which cancels:
+// at rigid_hertz 1e-6 the product was 1.14, and a rigid ball joint's impulse grew 14 % per
+// solve iteration until NaN.
+TEST(Spring, KernelSoftnessGivesBackLessThanItHoldsAtEveryFrequency) {
+  for (double hertz : {1e-6, 1e-3, 0.2, 60.0, 1e4, 1e9}) {
+    for (double zeta : {0.0, 0.7, 2.0, 1e3}) {
+      for (float h : {1e-9f, 1.0f / 240.0f, 1.0f, 1e3f}) {
+        const auto k = simd::make_softness(static_cast<float>(hertz), static_cast<float>(zeta), h);
+        const double omega = 2.0 * std::numbers::pi * hertz;
+        const double a = double(h) * omega * (2.0 * zeta + double(h) * omega);
+        if (!(a > 1e-30 && a < 1e30)) continue;  // beyond float: the context caps these
+        const double given_back = double(k.mass_scale) * double(k.feedback);
+        // Float rounding may leave it a few 1e-8 above 1 / (1 + a); 1.14 grew a joint to NaN.
+        EXPECT_LT(given_back, 1.0 + 1e-6)
+            << hertz << " Hz, zeta " << zeta << ", h " << h << " s, a " << a;
+        EXPECT_NEAR(given_back, 1.0 / (1.0 + a), 1e-4 / (1.0 + a))
+            << hertz << " Hz, zeta " << zeta << ", h " << h << " s, a " << a;
+        EXPECT_NEAR(k.mass_scale, a / (1.0 + a), 1e-4 * a / (1.0 + a))
+            << hertz << " Hz, zeta " << zeta << ", h " << h << " s";
+      }
+    }
+  }
+}
+
 // Issue 17, bug 5: the helpers returned NaN or a rigid spring for input no spring has; they
 // reject it like every other call, naming the argument and the value.
 TEST(Spring, HelpersRejectInputNoSpringHas) {

@@ -36,10 +36,17 @@ SOFTSTEP_INLINE Softness<L> make_softness(const L& hertz, const L& zeta, float h
   const L a = hl * omega * safe_denom;
   const L inv_one_plus_a = L(1.0f) / (L(1.0f) + a);
   const auto stiff = active && a > L(0.0f);
-  // mass_scale = a / (1 + a) written as 1 - 1/(1 + a): the same where both are defined, and
-  // 1 (not inf * 0) when a overflows for an extreme frequency.
-  return {select(active, omega / safe_denom, L(0.0f)),
-          select(active, L(1.0f) - inv_one_plus_a, L(0.0f)),
+  // mass_scale = a / (1 + a), written as 1 - 1/(1 + a): the same where both are defined, and
+  // 1 (not inf * 0) when a overflows for an extreme frequency. For the slowest rows that
+  // difference cancels: at a = 1.05e-7 (rigid_hertz 1e-6) it rounded to 1.19e-7, so that
+  // mass_scale * feedback, which must be 1 / (1 + a) < 1, was 1.14 and every solve iteration
+  // grew the row's accumulated impulse by 14 % (a corner sampler's worlds, NaN within a
+  // second). Its rounding passes 1 below a ~ 2.4e-4 (6e-8 / a > a); below 1e-3 a / (1 + a)
+  // is used, and above, the old form keeps every spring's trajectory bit for bit (a 4 Hz
+  // spring at 1/240 s has a = 0.07; the golden hashes hold).
+  // Spring.KernelSoftnessGivesBackLessThanItHoldsAtEveryFrequency.
+  const L mass_scale = select(a < L(1e-3f), a * inv_one_plus_a, L(1.0f) - inv_one_plus_a);
+  return {select(active, omega / safe_denom, L(0.0f)), select(active, mass_scale, L(0.0f)),
           select(active, inv_one_plus_a, L(0.0f)),
           select(stiff, L(1.0f) / select(stiff, a, L(1.0f)), L(0.0f))};
 }

@@ -61,8 +61,21 @@ SOFTSTEP_INLINE void solve_hinge_lock(JointBodies<L>& j, const HingeLock<L>& h,
   const Mat2Sym<L> k{dot(h.u1, i_u1), dot(h.u2, i_u2), dot(h.u1, i_u2)};
   const Vec3<L> dw = relative_angular_velocity(j);
   const Vec2<L> accumulated{load<L>(impulse[0]), load<L>(impulse[1])};
+  // A row's error is the sine of B's axis leaning, and |u| its cosine: a row that asked
+  // max_correction_speed of its error turned B at max_correction_speed / |u|, without bound
+  // as B's axis nears 90 degrees from A's, where u is float rounding (B spun from 1e-5 to 3e9
+  // rad/s in one solve, or the impulse left float: a corner sampler's revolute and wheel
+  // joints created with their axes crossed). So each row's correction is bounded by
+  // max_correction_speed |u|: the lean closes at that speed (Revolute.AxesCreatedCrossed-
+  // CloseAtTheCorrectionSpeed). Within ~0.01 degrees of crossed the impulse such a row
+  // accumulates, ~1 / |u|, still turns B fast when warm-started along a longer row.
+  // Normalizing the rows would bound that too, and move every hinge's bits.
+  Vec2<L> bound_scale{L(1.0f), L(1.0f)};
+  if constexpr (kUseBias) {
+    bound_scale = {sqrt_lanes(dot(h.u1, h.u1)), sqrt_lanes(dot(h.u2, h.u2))};
+  }
   const Vec2<L> dp = block2_impulse<L, kUseBias>(Vec2<L>{dot(h.u1, dw), dot(h.u2, dw)}, h.error, k,
-                                                 inverse_or_zero(k), accumulated, co);
+                                                 inverse_or_zero(k), accumulated, co, bound_scale);
   store_lanes(impulse[0], accumulated.x + dp.x);
   store_lanes(impulse[1], accumulated.y + dp.y);
   apply_angular_impulse(j, mul_add(dp.y, h.u2, dp.x * h.u1));

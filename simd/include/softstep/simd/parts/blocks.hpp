@@ -70,16 +70,21 @@ SOFTSTEP_INLINE Vec3<L> block3_impulse(const Vec3<L>& cdot, const Vec3<L>& c, co
   }
 }
 
-// The same for two rows (rigid or soft, never per lane: the 2-row blocks are locks).
+// The same for two rows (rigid or soft, never per lane: the 2-row blocks are locks). Each
+// row's bias is bounded by max_bias times its `bound_scale`: 1 for rows along unit axes (a
+// slider's lateral rows), the length of a row whose Jacobian is not a unit vector (the hinge
+// lock, angular_parts.hpp), so that the bound stays a bound on the bodies' speed.
 template <class L, bool kUseBias>
 SOFTSTEP_INLINE Vec2<L> block2_impulse(const Vec2<L>& cdot, const Vec2<L>& c, const Mat2Sym<L>& k,
                                        const Mat2Sym<L>& k_inv, const Vec2<L>& accumulated,
-                                       const RowCoefficients<L>& co) {
+                                       const RowCoefficients<L>& co,
+                                       const Vec2<L>& bound_scale = {L(1.0f), L(1.0f)}) {
   if constexpr (kUseBias) {
     const Vec2<L> fed_back = co.feedback * (k * accumulated);
-    const Vec2<L> bias{
-        bounded_bias<L, RowKind::Rigid>(co.bias_rate * c.x, fed_back.x, co.max_bias),
-        bounded_bias<L, RowKind::Rigid>(co.bias_rate * c.y, fed_back.y, co.max_bias)};
+    const Vec2<L> bias{bounded_bias<L, RowKind::Rigid>(co.bias_rate * c.x, fed_back.x,
+                                                       co.max_bias * bound_scale.x),
+                       bounded_bias<L, RowKind::Rigid>(co.bias_rate * c.y, fed_back.y,
+                                                       co.max_bias * bound_scale.y)};
     const Vec2<L> rigid_dp = k_inv * Vec2<L>{cdot.x + bias.x, cdot.y + bias.y};
     const L neg_mass_scale = L(0.0f) - co.mass_scale;
     return {fmadd(neg_mass_scale, rigid_dp.x, L(0.0f) - co.impulse_scale * accumulated.x),
