@@ -54,13 +54,24 @@ void expect_finite_at(const Corner& c) {
   heavy.gravity_scale = -1.0;
   const BodyId ids[] = {world.create_body(driver), world.create_body(light),
                         world.create_body(heavy)};
+  // A ball joint's point rows reach at most m |r|^2 / I_min = kMaxLeverCondition from a
+  // dynamic body's centre (validation::point_lever): a corner beyond it is refused instead.
+  constexpr double kMaxLeverCondition = 1e7;
+  const double lever_squared = 2.0 * c.anchor * c.anchor;  // both anchors
   for (int j = 0; j < 2; ++j) {
+    // Joint 0 holds the light body, joint 1 the light and the heavy one.
+    const double mass = j == 0 ? c.light_mass : std::max(c.light_mass, c.heavy_mass);
+    const bool beyond_reach = mass * lever_squared / c.inertia > kMaxLeverCondition;
     BallJointDef ball;
     ball.body_a = ids[j];
     ball.body_b = ids[j + 1];
     ball.local_anchor_a = {c.anchor, -c.anchor, 0.0};
     ball.local_anchor_b = {0.0, c.anchor, c.anchor};
     ball.spring = c.spring;
+    if (beyond_reach) {
+      EXPECT_THROW(world.create_ball_joint(ball), InvalidArgument) << describe(c);
+      return;
+    }
     world.create_ball_joint(ball);
     DistanceJointDef rope;
     rope.body_a = ids[j];

@@ -43,6 +43,17 @@ void positive(std::string_view call, std::string_view field, double value);
 Quaternion unit_quaternion(std::string_view call, std::string_view field, const Quaternion& q);
 void dynamic_mass(std::string_view call, std::string_view field, double mass);
 void inertia_tensor(std::string_view call, std::string_view field, const Eigen::Matrix3d& inertia);
+// A joint's point rows (every joint but the distance joint: ball, and the point or lateral
+// rows of the frame joints) on a dynamic body of this mass and inertia, anchored `anchor` from
+// its centre (body frame). Their 3x3 effective mass has a condition of about
+// m |anchor|^2 / I_min (I_min the smallest principal moment): beyond kMaxLeverCondition the
+// float solver cannot hold the joint, and `field` is refused showing `shown` (the anchor, or
+// the inertia that set_mass_properties would give the body).
+inline constexpr double kMaxLeverCondition = 1e7;
+void point_lever(std::string_view call, std::string_view field, const std::string& shown,
+                 const Eigen::Vector3d& anchor, double mass, const Eigen::Matrix3d& inertia);
+// An inertia tensor as the messages show it: [xx xy xz yx ...].
+std::string format(const Eigen::Matrix3d& inertia);
 void spring(std::string_view call, std::string_view field, const Spring& spring);
 // spring() for the joints whose springs take only hertz and damping_ratio (Spring::absolute
 // is rejected naming the field and the joints that take it).

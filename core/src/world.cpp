@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "joints/joint_common.hpp"
 #include "recording/recorder.hpp"
 #include "validation.hpp"
 #include "world_impl.hpp"
@@ -286,6 +287,7 @@ void World::set_mass_properties(BodyId id, double mass, const Eigen::Matrix3d& i
   }
   validation::dynamic_mass("set_mass_properties", "mass", mass);
   validation::inertia_tensor("set_mass_properties", "inertia", inertia);
+  check_point_levers(*impl_, "set_mass_properties", "inertia", slot, mass, inertia);
   impl_->touch(slot);
   b.mass = mass;
   b.inertia = inertia;

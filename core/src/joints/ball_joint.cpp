@@ -54,7 +54,7 @@ void BallKind::clear_impulses(Group<W>& g) {
 
 JointSlot BallKind::make_slot(const World::Impl& w, std::string_view call, const Def& def) {
   JointSlot j = checked_joint_ends(w, call, "BallJointDef", def.body_a, def.body_b,
-                                   def.local_anchor_a, def.local_anchor_b);
+                                   def.local_anchor_a, def.local_anchor_b, PointRows::Yes);
   validation::relative_spring(call, "BallJointDef.spring", def.spring);
   j.type = type;
   j.def = def;

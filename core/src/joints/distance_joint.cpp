@@ -101,7 +101,7 @@ void DistanceKind::clear_impulses(Group<W>& g) {
 
 JointSlot DistanceKind::make_slot(const World::Impl& w, std::string_view call, const Def& def) {
   JointSlot j = checked_joint_ends(w, call, "DistanceJointDef", def.body_a, def.body_b,
-                                   def.local_anchor_a, def.local_anchor_b);
+                                   def.local_anchor_a, def.local_anchor_b, PointRows::No);
   validation::spring(call, "DistanceJointDef.spring", def.spring);
   validation::non_negative(call, "DistanceJointDef.rest_length", def.rest_length);
   validation::non_negative(call, "DistanceJointDef.min_length", def.min_length);

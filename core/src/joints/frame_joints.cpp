@@ -44,7 +44,7 @@ JointFrame checked_frame(std::string_view call, const std::string& field, const 
 JointSlot checked_frame_ends(const World::Impl& w, std::string_view call, std::string_view def,
                              BodyId a, BodyId b, JointFrame& frame_a, JointFrame& frame_b) {
   JointSlot j = checked_joint_ends(w, call, def, a, b, frame_a.local_anchor, frame_b.local_anchor,
-                                   "frame_a.local_anchor", "frame_b.local_anchor");
+                                   PointRows::Yes, "frame_a.local_anchor", "frame_b.local_anchor");
   const std::string prefix(def);
   frame_a = checked_frame(call, prefix + ".frame_a", frame_a);
   frame_b = checked_frame(call, prefix + ".frame_b", frame_b);

@@ -2,6 +2,7 @@
 #include "joints/joint_common.hpp"
 
 #include <limits>
+#include <tuple>
 
 #include "state_hasher.hpp"
 
@@ -9,8 +10,8 @@ namespace softstep {
 
 JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
                              BodyId a, BodyId b, const Eigen::Vector3d& local_anchor_a,
-                             const Eigen::Vector3d& local_anchor_b, std::string_view anchor_a,
-                             std::string_view anchor_b) {
+                             const Eigen::Vector3d& local_anchor_b, PointRows point_rows,
+                             std::string_view anchor_a, std::string_view anchor_b) {
   const std::string prefix(def);
   JointSlot j;
   j.body_a = body_slot(w, call, prefix + ".body_a", a);
@@ -30,9 +31,28 @@ JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::s
   }
   validation::finite(call, prefix + "." + std::string(anchor_a), local_anchor_a);
   validation::finite(call, prefix + "." + std::string(anchor_b), local_anchor_b);
+  if (point_rows == PointRows::Yes) {
+    for (const auto& [body, anchor, name] : {std::tuple{j.body_a, &local_anchor_a, anchor_a},
+                                             std::tuple{j.body_b, &local_anchor_b, anchor_b}}) {
+      const BodySlot& s = w.bodies[body];
+      if (s.type != BodyType::Dynamic) continue;
+      validation::point_lever(call, prefix + "." + std::string(name), validation::format(*anchor),
+                              *anchor, s.mass, s.inertia);
+    }
+  }
   j.local_anchor_a = local_anchor_a;
   j.local_anchor_b = local_anchor_b;
   return j;
+}
+
+void check_point_levers(const World::Impl& w, std::string_view call, std::string_view field,
+                        std::uint32_t slot, double mass, const Eigen::Matrix3d& inertia) {
+  for (const std::uint32_t joint : w.bodies[slot].joints) {
+    const JointSlot& j = w.joints[joint];
+    if (!j.alive || j.type == JointType::Distance) continue;
+    const Eigen::Vector3d& anchor = j.body_a == slot ? j.local_anchor_a : j.local_anchor_b;
+    validation::point_lever(call, field, validation::format(inertia), anchor, mass, inertia);
+  }
 }
 
 WorldAnchors world_anchors(const World::Impl& w, const JointSlot& j) {

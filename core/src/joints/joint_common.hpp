@@ -10,14 +10,24 @@
 
 namespace softstep {
 
+// Whether a joint kind solves point rows (a 2- or 3-row block at its anchors), whose float
+// effective mass bounds how far a dynamic body's anchor may lie (validation::point_lever).
+enum class PointRows { Yes, No };
+
 // A slot with the checked ends of a definition named `def` ("RevoluteJointDef"): live and
-// distinct bodies, finite anchors, not both unable to move. Throws InvalidArgument.
+// distinct bodies, finite anchors, not both unable to move, and for point rows anchors within
+// validation::point_lever of a dynamic body's centre. Throws InvalidArgument.
 // The anchors are named `<def>.<anchor_a>` and `<def>.<anchor_b>`, as the Def spells them.
 JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::string_view def,
                              BodyId a, BodyId b, const Eigen::Vector3d& local_anchor_a,
-                             const Eigen::Vector3d& local_anchor_b,
+                             const Eigen::Vector3d& local_anchor_b, PointRows point_rows,
                              std::string_view anchor_a = "local_anchor_a",
                              std::string_view anchor_b = "local_anchor_b");
+
+// validation::point_lever for every joint with point rows on body `slot`, as if its mass
+// properties were these (set_mass_properties).
+void check_point_levers(const World::Impl& w, std::string_view call, std::string_view field,
+                        std::uint32_t slot, double mass, const Eigen::Matrix3d& inertia);
 
 template <int W>
 void fill_spring_lanes(simd::SoftRowLanes<W>& g, int lane, const Spring& spring) {
