@@ -310,6 +310,7 @@ TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
   const auto runs = [&](PlanStage stage) { return plan.runs(stage); };
   EXPECT_TRUE(runs(PlanStage::ClearImpulses));
   EXPECT_TRUE(runs(PlanStage::TreeSolve));
+  EXPECT_FALSE(runs(PlanStage::PrepareJoints));
   EXPECT_FALSE(runs(PlanStage::WarmStart));
   EXPECT_FALSE(runs(PlanStage::Solve));
   EXPECT_FALSE(runs(PlanStage::Relax));

@@ -374,6 +374,13 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   std::array<bool, kPlanStageCount> runs{};
   for (PlanStage p : w.plan.stages) runs[static_cast<std::size_t>(p)] = true;
   const auto planned = [&](PlanStage p) { return runs[static_cast<std::size_t>(p)]; };
+  // A stage the joints run: planned for them, not only added for the contacts (plan_contacts).
+  // Through planned() alone, a world whose joints are all solved exactly ran the joints'
+  // warm start, solve and relax whenever it had contacts, which the plan had left out.
+  const auto joints_run = [&](PlanStage p) {
+    return planned(p) &&
+           std::find(w.contact_stages.begin(), w.contact_stages.end(), p) == w.contact_stages.end();
+  };
   // Applied forces ride on the gravity term (force / mass), torques on their own.
   const bool torque = planned(PlanStage::Forces);
   const bool gravity = planned(PlanStage::Gravity) || torque;
@@ -438,9 +445,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::WarmStart) || planned(PlanStage::ClearImpulses) || has_contacts) {
         stage(Stage::WarmStart, [&] {
-          if (planned(PlanStage::WarmStart)) {
+          if (joints_run(PlanStage::WarmStart)) {
             solver.warm_start(arrays, ctx, share);
-          } else if (planned(PlanStage::ClearImpulses)) {
+          } else if (joints_run(PlanStage::ClearImpulses)) {
             solver.clear_impulses(share);
             solver::team_barrier(share);
           }
@@ -458,7 +465,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       if (planned(PlanStage::Solve) || has_contacts) {
         stage(Stage::Solve, [&] {
           for (int i = 0; i < s.solve_iterations; ++i) {
-            if (planned(PlanStage::Solve)) solver.solve(arrays, ctx, share);
+            if (joints_run(PlanStage::Solve)) solver.solve(arrays, ctx, share);
             if (has_contacts) {
               contact_solver.solve(arrays, ctx, contact_ctx, friction_while_solving, share);
             }
@@ -488,7 +495,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       if (planned(PlanStage::Relax) || (has_contacts && s.relax_iterations > 0)) {
         stage(Stage::Relax, [&] {
           for (int r = 0; r < s.relax_iterations; ++r) {
-            if (planned(PlanStage::Relax)) solver.relax(arrays, ctx, share);
+            if (joints_run(PlanStage::Relax)) solver.relax(arrays, ctx, share);
             if (has_contacts) contact_solver.relax(arrays, ctx, contact_ctx, share);
           }
         });

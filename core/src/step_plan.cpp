@@ -76,7 +76,12 @@ void World::Impl::build_plan() {
   // velocities (it projects onto J v = -bias from wherever they are), and its impulses
   // cleared at each sub-step's start come out the same as the warm-started ones (the warm
   // start's impulse is taken back by the exact pass). They were a third of the whip's step
-  // at 1,000 links. Mixed worlds keep the passes (the other joints need them).
+  // at 1,000 links. Nor do they need the lanes' preparation (world anchors, effective masses:
+  // the exact pass turns its own anchors, and a ball or distance joint writes nothing else at
+  // the step's start); the lanes still carry their impulses (ClearImpulses, the exact pass's
+  // add_impulses, the readings and the geometric inertia). Contacts add their stages to the
+  // plan (plan_contacts) without running the joints' passes (step.cpp, joints_run). Mixed
+  // worlds keep the passes and the preparation (the other joints need them).
   std::size_t lane_joints = 0;
   for (const PlanKernel& k : p.kernels) lane_joints += k.joints;
   const bool exact_only = exact && trees.counts().tree_joints == lane_joints;
@@ -84,7 +89,7 @@ void World::Impl::build_plan() {
     if (on) p.stages.push_back(stage);
   };
   add(bodies_awake, PlanStage::PrepareBodies);
-  add(joints_awake, PlanStage::PrepareJoints);
+  add(joints_awake && !exact_only, PlanStage::PrepareJoints);
   add(bodies_awake && (all || p.gravity), PlanStage::Gravity);
   add(bodies_awake && (all || p.damping), PlanStage::Damping);
   add(bodies_awake && (all || p.forces), PlanStage::Forces);
