@@ -171,16 +171,14 @@ TEST(FloatEnvelope, UndampedRigidRowsAtTheLowestFrequencyStayFinite) {
 
 // The slowest rigid rows (rigid_hertz 1e-6, accepted, the default damping ratio 2) are
 // springs that barely pull: a 1 kg body whose ball joint was created 1 m open, solved four
-// times per sub-step without a relax pass, should drift, not accelerate. With mass_scale
-// computed as 1 - 1/(1 + a) in float (a = 1.05e-7) each solve gave back 14 % more impulse than
-// it held (Spring.KernelSoftnessGivesBackLessThanItHoldsAtEveryFrequency): the body reached
-// the 1e4 m/s speed limit at step 27 and was NaN at step 59 (a corner sampler's world). The
-// row's bias asks omega / (2 zeta) * 1 m = 1.6e-6 m/s of it: the body stays below 1 m/s.
+// times per sub-step without a relax pass, falls as if free for its first second (the row's
+// bias asks omega / (2 zeta) * 1 m = 1.6e-6 m/s of it). With mass_scale computed as
+// 1 - 1/(1 + a) in float (a = 1.05e-7) each solve gave back 14 % more impulse than it held
+// (Spring.KernelSoftnessGivesBackLessThanItHoldsAtEveryFrequency): the impulse carrying the
+// body's weight grew until the body was NaN at step 59 (a corner sampler's world).
 TEST(FloatEnvelope, SlowestRigidRowsDoNotGrowTheirImpulse) {
-  World world(WorldSettings{.gravity = {0.0, 0.0, 0.0},
-                            .solve_iterations = 4,
-                            .relax_iterations = 0,
-                            .rigid_hertz = 1e-6});
+  const WorldSettings settings{.solve_iterations = 4, .relax_iterations = 0, .rigid_hertz = 1e-6};
+  World world(settings);
   const BodyId anchor = world.create_body(BodyDef{.type = BodyType::Static});
   BodyDef d;
   d.position = {1.0, 0.0, 0.0};
@@ -196,7 +194,7 @@ TEST(FloatEnvelope, SlowestRigidRowsDoNotGrowTheirImpulse) {
     ASSERT_TRUE(s.position.allFinite() && s.linear_velocity.allFinite()) << "step " << step;
     fastest = std::max(fastest, s.linear_velocity.norm());
   }
-  EXPECT_LT(fastest, 1.0);
+  EXPECT_LT(fastest, 1.01 * settings.gravity.norm() * 1.0);  // a second of free fall
 }
 
 // A revolute or a wheel created with its axles crossed, exactly 90 degrees apart: the hinge

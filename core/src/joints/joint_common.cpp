@@ -2,7 +2,6 @@
 #include "joints/joint_common.hpp"
 
 #include <limits>
-#include <tuple>
 
 #include "state_hasher.hpp"
 
@@ -31,15 +30,15 @@ JointSlot checked_joint_ends(const World::Impl& w, std::string_view call, std::s
   }
   validation::finite(call, prefix + "." + std::string(anchor_a), local_anchor_a);
   validation::finite(call, prefix + "." + std::string(anchor_b), local_anchor_b);
-  if (point_rows == PointRows::Yes) {
-    for (const auto& [body, anchor, name] : {std::tuple{j.body_a, &local_anchor_a, anchor_a},
-                                             std::tuple{j.body_b, &local_anchor_b, anchor_b}}) {
-      const BodySlot& s = w.bodies[body];
-      if (s.type != BodyType::Dynamic) continue;
-      validation::point_lever(call, prefix + "." + std::string(name), validation::format(*anchor),
-                              *anchor, s.mass, s.inertia);
-    }
-  }
+  const auto within_reach = [&](std::uint32_t body, const Eigen::Vector3d& anchor,
+                                std::string_view name) {
+    const BodySlot& s = w.bodies[body];
+    if (point_rows == PointRows::No || s.type != BodyType::Dynamic) return;
+    validation::point_lever(call, prefix + "." + std::string(name), validation::format(anchor),
+                            anchor, s.mass, s.inertia);
+  };
+  within_reach(j.body_a, local_anchor_a, anchor_a);
+  within_reach(j.body_b, local_anchor_b, anchor_b);
   j.local_anchor_a = local_anchor_a;
   j.local_anchor_b = local_anchor_b;
   return j;
