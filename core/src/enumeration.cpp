@@ -7,7 +7,7 @@ namespace softstep {
 namespace {
 // The live slots' ids, in slot order.
 template <class Id, class Slot>
-std::vector<Id> live_ids(const std::vector<Slot>& slots, std::size_t live) {
+std::vector<Id> live_ids(const PagedVector<Slot>& slots, std::size_t live) {
   std::vector<Id> ids;
   ids.reserve(live);
   for (std::uint32_t s = 0; s < slots.size(); ++s) {

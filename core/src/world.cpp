@@ -86,7 +86,7 @@ std::uint32_t joint_slot(const World::Impl& w, std::string_view call, JointId id
 // Reuses the most recently freed slot (its generation was bumped when it was freed), or
 // appends one: the ids handed out depend only on the sequence of calls.
 template <class Slot>
-static std::uint32_t take_slot(std::vector<Slot>& slots, std::vector<std::uint32_t>& free_list) {
+static std::uint32_t take_slot(PagedVector<Slot>& slots, std::vector<std::uint32_t>& free_list) {
   if (!free_list.empty()) {
     const std::uint32_t slot = free_list.back();
     free_list.pop_back();

@@ -9,6 +9,7 @@
 
 #include "contacts/contact_solver.hpp"
 #include "joints/joint_registry.hpp"
+#include "slot_vectors.hpp"
 #include "softstep/graph_coloring/graph_coloring.hpp"
 #include "softstep/simd/body_integration.hpp"
 #include "softstep/simd/step_context.hpp"
@@ -79,10 +80,10 @@ inline std::int32_t solver_index(const BodySlot& body, std::uint32_t slot) {
 }
 
 struct SolverBodies {
-  std::vector<simd::VelocityRecord> velocity;
-  std::vector<simd::DeltaRecord> delta;
-  std::vector<simd::MassRecord> mass;
-  std::vector<simd::ForceRecord> force;
+  PagedVector<simd::VelocityRecord> velocity;
+  PagedVector<simd::DeltaRecord> delta;
+  PagedVector<simd::MassRecord> mass;
+  PagedVector<simd::ForceRecord> force;
   // Slots of the awake dynamic and kinematic bodies, in slot order.
   std::vector<std::uint32_t> movable;
   // First records of the blocks of 8 that hold an awake movable body: integration runs over
@@ -110,11 +111,10 @@ class LaneSolver {
   virtual int lanes() const = 0;
   // Lays out the awake joints from the colouring; impulses come from the slots. specialize:
   // each joint runs the kernel variant of its signature, else the general kernel.
-  virtual void pack(const graph_coloring::GraphColoring& coloring,
-                    const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-                    bool specialize) = 0;
+  virtual void pack(const graph_coloring::GraphColoring& coloring, const JointSlots& joints,
+                    const BodySlots& bodies, bool specialize) = 0;
   // Copies the lanes' impulses back into the slots (before a re-pack).
-  virtual void save_impulses(std::vector<JointSlot>& joints) const = 0;
+  virtual void save_impulses(JointSlots& joints) const = 0;
   virtual bool in_lanes(std::uint32_t joint_slot) const = 0;
   // The joint's accumulated impulses (its kind's kImpulses floats), when in_lanes.
   virtual std::array<float, kMaxJointImpulses> impulses(std::uint32_t joint_slot) const = 0;
@@ -123,8 +123,7 @@ class LaneSolver {
   virtual void add_impulses(std::uint32_t joint_slot, const float* delta) = 0;
   // After set_joint: rewrites the joint's lane from its slot when it runs the same kernel and
   // signature as before, keeping its impulses; false when it needs a re-pack instead.
-  virtual bool refresh(std::uint32_t joint_slot, const std::vector<JointSlot>& joints,
-                       bool specialize) = 0;
+  virtual bool refresh(std::uint32_t joint_slot, const JointSlots& joints, bool specialize) = 0;
   // destroy_joint: turns the joint's lane into a padding lane (both bodies the static dummy,
   // which no kernel writes), so the colouring and every other lane stay as they are; false
   // when the joint is not in the lanes.
@@ -135,8 +134,7 @@ class LaneSolver {
   // (tension: the magnitude of its linear impulse, its kind's tension(); a body is dynamic when
   // dynamic[body] != 0, World::Impl::dynamic_body; a slider's A takes the lever from its centre
   // to B's anchor, read from `bodies`); this thread's share, ending at a team barrier.
-  virtual void accumulate_geometric_inertia(const std::vector<JointSlot>& joints,
-                                            const std::vector<BodySlot>& bodies,
+  virtual void accumulate_geometric_inertia(const JointSlots& joints, const BodySlots& bodies,
                                             const std::vector<std::uint8_t>& dynamic, double factor,
                                             std::vector<double>& extra,
                                             const solver::Share& share) const = 0;
@@ -144,9 +142,8 @@ class LaneSolver {
   // that run colour by colour meet at a barrier after each colour and after the overflow set,
   // the others touch only the thread's own groups or bodies (callers put the barriers).
   // Writes the step-start anchors and the rows' softness coefficients.
-  virtual void prepare(std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-                       const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
-                       const solver::Share& share) = 0;
+  virtual void prepare(JointSlots& joints, const BodySlots& bodies, const simd::BodyArrays& arrays,
+                       const simd::SubstepContext& ctx, const solver::Share& share) = 0;
   virtual void warm_start(const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
                           const solver::Share& share) = 0;
   virtual void clear_impulses(const solver::Share& share) = 0;
@@ -189,9 +186,9 @@ std::string simd_width_requirement(SimdWidth width);
 
 struct World::Impl {
   WorldSettings settings;
-  std::vector<BodySlot> bodies;
+  BodySlots bodies;
   std::vector<std::uint32_t> free_bodies;  // slots to reuse, last freed first
-  std::vector<JointSlot> joints;
+  JointSlots joints;
   std::vector<std::uint32_t> free_joints;
   std::size_t body_count = 0;
   std::size_t joint_count = 0;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "contacts/contact_key_index.hpp"
+#include "paged_vector.hpp"
 #include "prefetch.hpp"
 #include "softstep/contacts.hpp"
 
@@ -98,7 +99,7 @@ class ContactCache {
   ContactCacheEntry& step_entry(std::size_t manifold) { return entries_[manifold]; }
 
  private:
-  std::vector<ContactCacheEntry> entries_;
+  PagedVector<ContactCacheEntry> entries_;
   ContactKeyIndex index_;  // key -> position in entries_
 };
 

@@ -144,7 +144,7 @@ void put3(float (&dst)[3][W], int lane, const FourVectors& v, int point) {
 // step start) and the warm-start impulses from the matching cached points (none: match empty).
 template <int W>
 void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const ContactManifold& m,
-               const std::vector<BodySlot>& bodies, const Match& match) {
+               const BodySlots& bodies, const Match& match) {
   const BodySlot& a = bodies[m.body_a.index];
   const BodySlot& b = bodies[m.body_b.index];
   g.id[lane] = index;
@@ -283,7 +283,7 @@ struct ContactRun {
 // The groups of one colour (or of the overflow set) at width W, cut into runs by signature.
 template <int W>
 struct ContactBatch {
-  std::vector<simd::ContactLanes<W>> groups;
+  PagedVector<simd::ContactLanes<W>> groups;
   std::vector<ContactRun> runs;
 };
 
@@ -314,7 +314,7 @@ class ContactSolverImpl final : public ContactSolver {
     const auto start = std::chrono::steady_clock::now();
     step_ = step;
     const std::span<const ContactManifold> manifolds = step.manifolds;
-    const std::vector<BodySlot>& bodies = *step.bodies;
+    const BodySlots& bodies = *step.bodies;
     layout_ = {};
     used_colors_ = 0;
     unsorted_.clear();
@@ -572,7 +572,7 @@ class ContactSolverImpl final : public ContactSolver {
   std::array<std::uint32_t, kOrderKeys> counts_{};
   std::vector<std::uint32_t> left_out_;  // manifolds not in lanes, in input order
   // Per entry (in the solver's order, so that each thread writes a range of its own).
-  std::vector<PackedManifold> packed_;
+  PagedVector<PackedManifold> packed_;
   std::vector<std::uint32_t> body_colors_;  // per body slot, scratch of load (all zero between)
   std::uint64_t used_colors_ = 0;
   // The first layout_.colors are this step's; the rest keep their memory for later steps.

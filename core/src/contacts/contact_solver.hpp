@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "contacts/contact_cache.hpp"
+#include "slot_vectors.hpp"
 #include "softstep/contacts.hpp"
 #include "softstep/simd/contact_kernel.hpp"
 #include "softstep/world_settings.hpp"
@@ -18,12 +19,10 @@
 
 namespace softstep {
 
-struct BodySlot;
-
 // The step's contacts and where their results go, handed to load; held until store returns.
 struct ContactStep {
   std::span<const ContactManifold> manifolds;
-  const std::vector<BodySlot>* bodies = nullptr;
+  const BodySlots* bodies = nullptr;
   const ContactCache* previous = nullptr;  // the last step's warm-start cache
   ContactCache* next = nullptr;  // indexed by the step's validation (ContactCache::index_step)
   bool warm_start = true;

@@ -46,7 +46,7 @@ struct BallKind {
   static bool needs_relax(std::size_t v, std::uint32_t) { return relaxes(v); }
 
   template <int W>
-  static void write_step_start(Group<W>&, int, JointSlot&, const std::vector<BodySlot>&) {}
+  static void write_step_start(Group<W>&, int, JointSlot&, const BodySlots&) {}
 
   // The exact tree pass's impulse change (solver/tree_solver.hpp), world frame.
   template <int W>

@@ -62,15 +62,11 @@ double angular_effective_mass(const BodySlot& a, const BodySlot& b, const Eigen:
   template void K::read_impulses<W>(const K::Group<W>&, int, float*); \
   template void K::clear_impulses<W>(K::Group<W>&);
 // write_step_start, for the kinds that define it in their .cpp.
-#define SOFTSTEP_INSTANTIATE_STEP_START(K)                            \
-  template void K::write_step_start<1>(K::Group<1>&, int, JointSlot&, \
-                                       const std::vector<BodySlot>&); \
-  template void K::write_step_start<4>(K::Group<4>&, int, JointSlot&, \
-                                       const std::vector<BodySlot>&); \
-  template void K::write_step_start<8>(K::Group<8>&, int, JointSlot&,  \
-                                       const std::vector<BodySlot>&); \
-  template void K::write_step_start<16>(K::Group<16>&, int, JointSlot&, \
-                                        const std::vector<BodySlot>&);
+#define SOFTSTEP_INSTANTIATE_STEP_START(K)                                               \
+  template void K::write_step_start<1>(K::Group<1>&, int, JointSlot&, const BodySlots&); \
+  template void K::write_step_start<4>(K::Group<4>&, int, JointSlot&, const BodySlots&); \
+  template void K::write_step_start<8>(K::Group<8>&, int, JointSlot&, const BodySlots&); \
+  template void K::write_step_start<16>(K::Group<16>&, int, JointSlot&, const BodySlots&);
 #define SOFTSTEP_INSTANTIATE_KIND(K)    \
   SOFTSTEP_INSTANTIATE_KIND_LANES(K, 1) \
   SOFTSTEP_INSTANTIATE_KIND_LANES(K, 4) \

@@ -34,14 +34,13 @@
 #include <utility>
 #include <vector>
 
+#include "slot_vectors.hpp"
 #include "softstep/simd/step_context.hpp"
 #include "softstep/step_plan.hpp"
 #include "softstep/world.hpp"
 
 namespace softstep {
 
-struct JointSlot;
-struct BodySlot;
 class StateHasher;
 
 // The most impulse floats any type keeps (a revolute joint with every part: 3 point, 2 lock,

@@ -48,8 +48,7 @@ void PrismaticKind::fill_lane(Group<W>& g, int lane, const JointSlot& j) {
 }
 
 template <int W>
-void PrismaticKind::write_step_start(Group<W>& g, int lane, JointSlot& j,
-                                     const std::vector<BodySlot>& bodies) {
+void PrismaticKind::write_step_start(Group<W>& g, int lane, JointSlot& j, const BodySlots& bodies) {
   const Def& d = std::get<Def>(j.def);
   write_frame_lanes(g, lane,
                     world_frames(bodies[j.body_a], bodies[j.body_b], d.frame_a, d.frame_b));

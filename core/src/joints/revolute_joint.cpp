@@ -48,8 +48,7 @@ void RevoluteKind::fill_lane(Group<W>& g, int lane, const JointSlot& j) {
 // The angle is kept unwrapped in double: each step it moves to the representative of the
 // wrapped angle nearest to where it was (at most half a turn away: revolute.hpp).
 template <int W>
-void RevoluteKind::write_step_start(Group<W>& g, int lane, JointSlot& j,
-                                    const std::vector<BodySlot>& bodies) {
+void RevoluteKind::write_step_start(Group<W>& g, int lane, JointSlot& j, const BodySlots& bodies) {
   const Def& d = std::get<Def>(j.def);
   const WorldFrames f = world_frames(bodies[j.body_a], bodies[j.body_b], d.frame_a, d.frame_b);
   write_frame_lanes(g, lane, f);

@@ -135,7 +135,7 @@ void SwingTwistKind::fill_lane(Group<W>& g, int lane, const JointSlot& j) {
 
 template <int W>
 void SwingTwistKind::write_step_start(Group<W>& g, int lane, JointSlot& j,
-                                      const std::vector<BodySlot>& bodies) {
+                                      const BodySlots& bodies) {
   const Def& d = std::get<Def>(j.def);
   const WorldFrames f = world_frames(bodies[j.body_a], bodies[j.body_b], d.frame_a, d.frame_b);
   write_frame_lanes(g, lane, f);

@@ -26,8 +26,7 @@ struct WheelKind {
   static bool needs_relax(std::size_t, std::uint32_t) { return true; }
 
   template <int W>
-  static void write_step_start(Group<W>& g, int lane, JointSlot& j,
-                               const std::vector<BodySlot>& bodies);
+  static void write_step_start(Group<W>& g, int lane, JointSlot& j, const BodySlots& bodies);
 
   SOFTSTEP_JOINT_KIND_MEMBERS;
 };

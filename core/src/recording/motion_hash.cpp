@@ -27,7 +27,7 @@ std::uint64_t World::motion_hash() const {
   // Each body's 14 words go to fixed lanes, so the four lanes stay in registers and their
   // multiplications overlap.
   std::uint64_t l0 = 1, l1 = 2, l2 = 3, l3 = 4;
-  const std::vector<BodySlot>& bodies = impl_->bodies;
+  const BodySlots& bodies = impl_->bodies;
   for (std::uint32_t slot = 0; slot < bodies.size(); ++slot) {
     const BodySlot& b = bodies[slot];
     if (!b.alive) continue;

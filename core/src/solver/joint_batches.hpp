@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "joints/joint_registry.hpp"
+#include "paged_vector.hpp"
 #include "softstep/simd/body_integration.hpp"
 
 namespace softstep::solver {
@@ -25,7 +26,7 @@ struct KindBatches {
   // The kernels load every field with aligned loads of W floats (64 bytes at 16 lanes).
   static_assert(alignof(Group) >= sizeof(float) * W,
                 "declare the kind's lane group alignas(simd::kLaneAlign<W>)");
-  std::vector<Group> groups;
+  PagedVector<Group> groups;
   std::vector<Run> runs;
 };
 

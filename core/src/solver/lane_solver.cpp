@@ -42,7 +42,7 @@ Group empty_group() {
 
 template <int W>
 void fill_common_lane(simd::AnchorLanes<W>& g, int lane, std::uint32_t slot, const JointSlot& j,
-                      const std::vector<BodySlot>& bodies) {
+                      const BodySlots& bodies) {
   g.id[lane] = slot;
   g.body_a[lane] = solver_index(bodies[j.body_a], j.body_a);
   g.body_b[lane] = solver_index(bodies[j.body_b], j.body_b);
@@ -57,8 +57,7 @@ void fill_common_lane(simd::AnchorLanes<W>& g, int lane, std::uint32_t slot, con
 // Each lane does Eigen's operations in order (four_doubles.hpp): the lanes get the bits they
 // had.
 template <int W>
-void write_anchors(simd::AnchorLanes<W>& g, const std::vector<JointSlot>& joints,
-                   const std::vector<BodySlot>& bodies) {
+void write_anchors(simd::AnchorLanes<W>& g, const JointSlots& joints, const BodySlots& bodies) {
   for (int first = 0; first < W; first += 4) {
     const int count = std::min(4, W - first);
     // A lane without a joint (padding, or past the group's width) repeats a real one; only
@@ -128,8 +127,8 @@ class LaneSolverImpl final : public LaneSolver {
 
   int lanes() const override { return W; }
 
-  void pack(const graph_coloring::GraphColoring& coloring, const std::vector<JointSlot>& joints,
-            const std::vector<BodySlot>& bodies, bool specialize) override {
+  void pack(const graph_coloring::GraphColoring& coloring, const JointSlots& joints,
+            const BodySlots& bodies, bool specialize) override {
     colors_.clear();
     overflow_ = {};
     lane_of_.assign(joints.size(), LaneRef{});
@@ -146,7 +145,7 @@ class LaneSolverImpl final : public LaneSolver {
     count_uses();
   }
 
-  void save_impulses(std::vector<JointSlot>& joints) const override {
+  void save_impulses(JointSlots& joints) const override {
     for (std::uint32_t j = 0; j < joints.size(); ++j) {
       if (joints[j].alive && in_lanes(j)) joints[j].impulse = impulses(j);
     }
@@ -165,8 +164,7 @@ class LaneSolverImpl final : public LaneSolver {
     return out;
   }
 
-  bool refresh(std::uint32_t joint_slot, const std::vector<JointSlot>& joints,
-               bool specialize) override {
+  bool refresh(std::uint32_t joint_slot, const JointSlots& joints, bool specialize) override {
     if (!in_lanes(joint_slot)) return false;
     const LaneRef& r = lane_of_[joint_slot];
     const JointSlot& j = joints[joint_slot];
@@ -210,8 +208,7 @@ class LaneSolverImpl final : public LaneSolver {
     });
   }
 
-  void accumulate_geometric_inertia(const std::vector<JointSlot>& joints,
-                                    const std::vector<BodySlot>& bodies,
+  void accumulate_geometric_inertia(const JointSlots& joints, const BodySlots& bodies,
                                     const std::vector<std::uint8_t>& dynamic, double factor,
                                     std::vector<double>& extra,
                                     const solver::Share& share) const override {
@@ -248,9 +245,8 @@ class LaneSolverImpl final : public LaneSolver {
   const std::vector<KernelUse>& uses() const override { return uses_; }
   bool needs(Pass pass) const override { return needs_[static_cast<int>(pass)]; }
 
-  void prepare(std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-               const simd::BodyArrays& arrays, const simd::SubstepContext& ctx,
-               const solver::Share& share) override {
+  void prepare(JointSlots& joints, const BodySlots& bodies, const simd::BodyArrays& arrays,
+               const simd::SubstepContext& ctx, const solver::Share& share) override {
     visit_groups(*this, share, [&]<class Kind>(auto& group, int width) {
       write_anchors(group, joints, bodies);
       for (int lane = 0; lane < width; ++lane) {
@@ -378,7 +374,7 @@ class LaneSolverImpl final : public LaneSolver {
 
   // A joint is in the lanes unless its bodies sleep (both movable ends of a joint share an
   // island, so one end asleep means the joint is).
-  static bool asleep(const JointSlot& j, const std::vector<BodySlot>& bodies) {
+  static bool asleep(const JointSlot& j, const BodySlots& bodies) {
     return bodies[j.body_a].asleep || bodies[j.body_b].asleep;
   }
 
@@ -388,8 +384,8 @@ class LaneSolverImpl final : public LaneSolver {
   // width.
   template <int V>
   void add_members(ColorBatches<V>& batches, std::span<const std::uint32_t> members,
-                   const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-                   bool specialize, bool overflow, std::uint32_t color) {
+                   const JointSlots& joints, const BodySlots& bodies, bool specialize,
+                   bool overflow, std::uint32_t color) {
     using Key = std::pair<std::uint8_t, std::uint32_t>;  // variant, signature
     std::array<std::map<Key, std::vector<std::uint32_t>>, JointKinds::size> lists;
     for (std::uint32_t j : members) {

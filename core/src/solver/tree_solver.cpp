@@ -128,8 +128,8 @@ constexpr int kMaxExtraProjections = 2;
 
 }  // namespace
 
-void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
-                       const std::vector<BodySlot>& bodies, const LaneSolver& lanes) {
+void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlots& bodies,
+                       const LaneSolver& lanes) {
   islands_.clear();
   counts_ = {};
   if (mode == SolverMode::Iterative) return;
@@ -225,7 +225,7 @@ void TreeSolver::build(SolverMode mode, const std::vector<JointSlot>& joints,
   }
 }
 
-void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
+void TreeSolver::pass(const JointSlots& joints, const BodySlots& bodies,
                       SolverBodies& solver_bodies, LaneSolver& lanes,
                       const simd::SubstepContext& ctx, Pass which, const Share& share) {
   // Islands are disjoint in bodies and joints: each thread solves its slice alone. One long
@@ -236,9 +236,9 @@ void TreeSolver::pass(const std::vector<JointSlot>& joints, const std::vector<Bo
   }
 }
 
-void TreeSolver::solve_island(Island& island, const std::vector<JointSlot>& joints,
-                              const std::vector<BodySlot>& bodies, SolverBodies& sb,
-                              LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which) {
+void TreeSolver::solve_island(Island& island, const JointSlots& joints, const BodySlots& bodies,
+                              SolverBodies& sb, LaneSolver& lanes, const simd::SubstepContext& ctx,
+                              Pass which) {
   const bool with_bias = which.with_bias;
   // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
   // the bodies have moved only by the position projection since.

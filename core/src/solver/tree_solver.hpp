@@ -22,14 +22,13 @@
 #include <cstdint>
 #include <vector>
 
+#include "slot_vectors.hpp"
 #include "softstep/simd/step_context.hpp"
 #include "softstep/world_settings.hpp"
 #include "solver/joint_batches.hpp"
 #include "solver/tree_system.hpp"
 
 namespace softstep {
-struct JointSlot;
-struct BodySlot;
 struct SolverBodies;
 class LaneSolver;
 }  // namespace softstep
@@ -48,8 +47,8 @@ struct TreeCounts {
 class TreeSolver {
  public:
   // Finds the islands to solve exactly among the joints in the lanes (awake).
-  void build(SolverMode mode, const std::vector<JointSlot>& joints,
-             const std::vector<BodySlot>& bodies, const LaneSolver& lanes);
+  void build(SolverMode mode, const JointSlots& joints, const BodySlots& bodies,
+             const LaneSolver& lanes);
   bool empty() const { return islands_.empty(); }
   const TreeCounts& counts() const { return counts_; }
   // Which exact pass this is.
@@ -66,9 +65,8 @@ class TreeSolver {
   };
   // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
   // joints' lane impulses; the relax pass also moves the bodies' positions.
-  void pass(const std::vector<JointSlot>& joints, const std::vector<BodySlot>& bodies,
-            SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
-            Pass which, const Share& share);
+  void pass(const JointSlots& joints, const BodySlots& bodies, SolverBodies& solver_bodies,
+            LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which, const Share& share);
 
  private:
   struct Anchors {
@@ -102,9 +100,9 @@ class TreeSolver {
     TreeSystem system;
     bool relax_factored = false;  // the system holds the last pass's factor, a relax pass's
   };
-  void solve_island(Island& island, const std::vector<JointSlot>& joints,
-                    const std::vector<BodySlot>& bodies, SolverBodies& solver_bodies,
-                    LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which);
+  void solve_island(Island& island, const JointSlots& joints, const BodySlots& bodies,
+                    SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
+                    Pass which);
   std::vector<Island> islands_;
   TreeCounts counts_;
 };
