@@ -103,8 +103,8 @@ PackedManifold packed_manifold(const ContactManifold& m, std::uint32_t index,
 constexpr std::size_t kFetchAhead = 8;
 
 // Makes every lane of the group padding, in place: building an empty group and assigning it
-// wrote each byte twice (5.6 KB a group at 16 lanes; the copy alone was a fifth of the pyramid's
-// packing time).
+// wrote each byte twice (5.6 KB a group at 16 lanes; the copy held a fifth of the packing's
+// perf samples, though the pyramid's prepare shortened by less than the host's noise).
 template <class Group>
 void empty_in_place(Group& g) {
   static_assert(std::is_trivially_copyable_v<Group>, "cleared with memset");
