@@ -23,7 +23,8 @@ inline constexpr std::size_t kHugePage = std::size_t{2} << 20;
 // std::allocator. Why: a step walks every body's, joint's and contact's record, and with 4 KB
 // pages a 100,000-link chain's 130 MB miss the TLB on nearly every record (each miss a page
 // walk, a long one in a VM). The same binary with every allocation on huge pages
-// (GLIBC_TUNABLES=glibc.malloc.hugetlb=1) stepped the README's main job 10-15 % faster.
+// (GLIBC_TUNABLES=glibc.malloc.hugetlb=1) stepped the README's main job 7-16 % faster
+// (5 runs alternated, one thread, a Zen 4 VM).
 // A block wastes less than one huge page; where madvise fails the block is an ordinary one.
 template <class T>
 struct HugePageAllocator {
