@@ -51,14 +51,6 @@ void reject(std::string_view call, std::string_view field, const std::string& va
   throw InvalidArgument(std::string(field), message);
 }
 
-bool in_envelope(double value) {
-  return std::isfinite(value) && std::abs(value) <= kMaxMagnitude;
-}
-
-bool in_envelope(const Eigen::Vector3d& value) {
-  return value.allFinite() && value.cwiseAbs().maxCoeff() <= kMaxMagnitude;
-}
-
 void finite(std::string_view call, std::string_view field, double value) {
   if (!std::isfinite(value)) reject(call, field, format(value), "must be finite");
   if (std::abs(value) > kMaxMagnitude)
