@@ -378,8 +378,8 @@ namespace softstep::test {
 namespace {
 
 // The fuzzer's seeds (tests/fuzz/recording_corpus) are real files of every version, and each
-// replays step for step (tests/recording_seeds_test.cpp writes the version 1 ones and
-// seed_every_call again when the state hash changes).
+// replays step for step (tests/recording_seeds_test.cpp writes the version 1 ones,
+// seed_every_call and seed_v3_contacts again when results change).
 TEST(RecordingContacts, SeedsOfEveryVersionAreRead) {
   const std::string corpus = std::string(SOFTSTEP_SOURCE_DIR) + "/tests/fuzz/recording_corpus/";
   struct Seed {

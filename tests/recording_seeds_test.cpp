@@ -1,9 +1,9 @@
 // The recording fuzzer's seeds (tests/fuzz/recording_corpus/seed_chain_steps, seed_every_call,
-// seed_v1_every_call) are written here, so that they can be written again when a change meant
-// to change results (a new state hash, a re-frozen golden table) leaves the committed ones
-// stopping at their first hash: the fuzzer must start from files that replay through, not
-// from files its reader refuses at the start. To rewrite them (an FMA build, as the release
-// and tests presets are):
+// seed_v1_every_call, seed_v3_contacts) are written here, so that they can be written again when a
+// change meant to change results (a new state hash, a re-frozen golden table) leaves the committed
+// ones stopping at their first hash: the fuzzer must start from files that replay through, not from
+// files its reader refuses at the start. To rewrite them (an FMA build, as the release and tests
+// presets are):
 //   SOFTSTEP_WRITE_SEEDS=tests/fuzz/recording_corpus
 //     build/tests/tests/softstep_tests --gtest_filter=RecordingSeeds.*   (one command line)
 #include <gtest/gtest.h>
@@ -15,6 +15,7 @@
 #include <fstream>
 #include <functional>
 
+#include "contacts/analytic_contacts.hpp"
 #include "frame_constants.hpp"
 #include "recording_files.hpp"
 #include "scenes/chain_scene.hpp"
@@ -100,6 +101,36 @@ std::string every_call_version_1() {
   return bytes;
 }
 
+// Steps with contacts: a box on the ground, a box on it and a round ball rolling on the ground
+// (a radius, restitution and friction), five manifolds a step for three steps.
+std::string contact_steps() {
+  World world;
+  const BodyId ground = add_ground(world);
+  const BodyId lower = add_box(world, {0.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
+  const BodyId upper = add_box(world, {0.1, 1.505, 0.0}, 5.0, kUnitCubeHalf);
+  const BodyId side = add_box(world, {2.0, 0.5, 0.0}, 5.0, kUnitCubeHalf);
+  const BodyId top = add_box(world, {2.0, 1.5, 0.05}, 5.0, kUnitCubeHalf);
+  BodyDef d;
+  d.position = {-2.0, 0.25, 0.0};
+  d.mass = 2.0;
+  d.inertia = solid_sphere_inertia(2.0, 0.25);
+  d.linear_velocity = {2.0, 0.0, 0.0};
+  d.angular_velocity = {0.0, 0.0, -8.0};
+  const BodyId ball = world.create_body(d);
+  const auto contacts = [&](const World& w) {
+    ContactManifold rolling = round_sphere_on_ground(w, ground, ball, 0.25);
+    rolling.friction = 0.8;
+    rolling.restitution = 0.5;
+    return std::vector<ContactManifold>{box_on_ground(w, ground, lower, kUnitCubeHalf, 0.0, 0.5),
+                                        box_on_box(w, lower, upper, kUnitCubeHalf),
+                                        box_on_ground(w, ground, side, kUnitCubeHalf, 0.0, 0.5),
+                                        box_on_box(w, side, top, kUnitCubeHalf), rolling};
+  };
+  return recording_of(world, [&](World& w) {
+    for (int i = 0; i < 3; ++i) w.step(kDt, contacts(w));
+  });
+}
+
 struct Seed {
   const char* name;
   std::string (*write)();
@@ -110,6 +141,7 @@ constexpr Seed kSeeds[] = {
     {"seed_chain_steps", chain_steps, 6},
     {"seed_every_call", every_call, 4},
     {"seed_v1_every_call", every_call_version_1, 4},
+    {"seed_v3_contacts", contact_steps, 3},
 };
 
 // Each seed as written now replays through (every step and the end state matched), and with
