@@ -208,8 +208,7 @@ void World::destroy_body(BodyId id) {
   // world that destroys bodies by the thousand between steps may want a per-body index.)
   if (!w.contact_cache.empty()) {
     w.settle_contact_readings();
-    const std::uint64_t word = (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
-    w.contact_cache.erase_body(word);
+    w.contact_cache.erase_body(body_word(id));
   }
   BodySlot& b = w.bodies[slot];
   b.alive = false;

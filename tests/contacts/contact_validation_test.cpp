@@ -58,6 +58,16 @@ TEST(ContactValidation, UnknownAndDestroyedBodies) {
         m.body_b = gone;
       },
       "contacts[0].body_b", "BodyId{");
+  // Its slot taken by a new body: the old id (one generation behind) is still refused.
+  expect_rejected(
+      [](ContactManifold& m, Scene& s) {
+        const BodyId gone = add_box(s.world, {9.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+        s.world.destroy_body(gone);
+        const BodyId reborn = add_box(s.world, {9.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+        ASSERT_EQ(reborn.index, gone.index);
+        m.body_a = gone;
+      },
+      "contacts[0].body_a", "BodyId{");
 }
 
 TEST(ContactValidation, BodyAgainstItself) {

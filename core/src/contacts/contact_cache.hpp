@@ -41,12 +41,14 @@ struct ContactCacheEntry {
   CachedManifold manifold;
 };
 
+// A body id as one word, generation << 32 | slot, as the contact keys hold it.
+inline std::uint64_t body_word(BodyId id) {
+  return (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
+}
+
 // Inline: the step's validation compares every manifold's key with last step's.
 inline ContactPairKey contact_pair_key(const ContactManifold& m) {
-  const auto word = [](BodyId id) {
-    return (std::uint64_t(id.generation) << 32) | std::uint64_t(id.index);
-  };
-  const std::uint64_t a = word(m.body_a), b = word(m.body_b);
+  const std::uint64_t a = body_word(m.body_a), b = body_word(m.body_b);
   return {std::min(a, b), std::max(a, b), m.key};
 }
 

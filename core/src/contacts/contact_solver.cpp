@@ -88,7 +88,7 @@ PackedManifold packed_manifold(const ContactManifold& m, std::uint32_t index,
   packed.key = contact_pair_key(m);
   packed.match = find_match(m, packed.key, index, previous);
   packed.point_count = static_cast<std::uint16_t>(m.point_count);
-  packed.a_is_low = packed.key.low == (std::uint64_t(m.body_a.generation) << 32 | m.body_a.index);
+  packed.a_is_low = packed.key.low == body_word(m.body_a);
   for (int i = 0; i < m.point_count; ++i) {
     const std::uint32_t feature = m.points[static_cast<std::size_t>(i)].feature_id;
     packed.feature_id[static_cast<std::size_t>(i)] = feature;
