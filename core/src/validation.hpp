@@ -40,7 +40,10 @@ inline bool in_envelope(double value) {
   return std::abs(value) <= kMaxMagnitude;
 }
 inline bool in_envelope(const Eigen::Vector3d& value) {
-  return in_envelope(value.x()) & in_envelope(value.y()) & in_envelope(value.z());
+  bool inside = in_envelope(value.x());
+  inside &= in_envelope(value.y());
+  inside &= in_envelope(value.z());
+  return inside;
 }
 void finite(std::string_view call, std::string_view field, double value);
 void finite(std::string_view call, std::string_view field, const Eigen::Vector3d& value);

@@ -41,22 +41,24 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
   if (!body_alive(w, m.body_a) || !body_alive(w, m.body_b) || m.body_a.index == m.body_b.index)
     return false;
   if (m.point_count < 1 || m.point_count > kMaxContactPoints) return false;
-  // The field rules joined with & rather than ||: they all hold in practice, and one test of
+  // The field rules joined with &= rather than ||: they all hold in practice, and one test of
   // the whole is cheaper than a branch per field.
-  const bool fields = in_envelope(m.normal) & (std::abs(m.normal.norm() - 1.0) <= kUnitTolerance) &
-                      within(m.friction, 0.0, kMaxMagnitude) & within(m.restitution, 0.0, 1.0) &
-                      within(m.rolling_resistance, 0.0, kMaxMagnitude) &
-                      within(m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude) &
-                      within(m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude) &
-                      within(m.radius_a, 0.0, kMaxMagnitude) &
-                      within(m.radius_b, 0.0, kMaxMagnitude);
+  bool fields = in_envelope(m.normal);
+  fields &= std::abs(m.normal.norm() - 1.0) <= kUnitTolerance;
+  fields &= within(m.friction, 0.0, kMaxMagnitude);
+  fields &= within(m.restitution, 0.0, 1.0);
+  fields &= within(m.rolling_resistance, 0.0, kMaxMagnitude);
+  fields &= within(m.tangent_speed.x(), -kMaxMagnitude, kMaxMagnitude);
+  fields &= within(m.tangent_speed.y(), -kMaxMagnitude, kMaxMagnitude);
+  fields &= within(m.radius_a, 0.0, kMaxMagnitude);
+  fields &= within(m.radius_b, 0.0, kMaxMagnitude);
   if (!fields) return false;
   for (int k = 0; k < m.point_count; ++k) {
     const ContactPoint& p = m.points[static_cast<std::size_t>(k)];
-    if (!(in_envelope(p.anchor_a) & in_envelope(p.anchor_b) &
-          within(p.separation, -kMaxMagnitude, kMaxMagnitude))) {
-      return false;
-    }
+    bool point = in_envelope(p.anchor_a);
+    point &= in_envelope(p.anchor_b);
+    point &= within(p.separation, -kMaxMagnitude, kMaxMagnitude);
+    if (!point) return false;
     for (int earlier = 0; earlier < k; ++earlier) {
       if (m.points[static_cast<std::size_t>(earlier)].feature_id == p.feature_id) return false;
     }
