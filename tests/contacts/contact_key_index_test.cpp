@@ -95,10 +95,16 @@ TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
   EXPECT_EQ(next.index_step(step, empty), 3u);
   const std::vector<ContactManifold> unique(step.begin(), step.end() - 1);
   EXPECT_EQ(next.index_step(unique, empty), ContactCache::kNoRepeat);
+  // Each manifold's entry in a slot of its own, not at its input position (as the solver
+  // writes them: in its order).
+  const auto slot_of = [&](std::size_t position) {
+    return static_cast<std::uint32_t>(unique.size() - 1 - position);
+  };
   next.size_for_step(unique.size());
   for (std::size_t i = 0; i < unique.size(); ++i) {
-    next.step_entry(i).key = contact_pair_key(unique[i]);
-    next.step_entry(i).manifold.point_count = static_cast<std::uint16_t>(i + 1);
+    next.place(i, slot_of(i));
+    next.slot_entry(slot_of(i)).key = contact_pair_key(unique[i]);
+    next.slot_entry(slot_of(i)).manifold.point_count = static_cast<std::uint16_t>(i + 1);
   }
   // The same manifolds in the same order: the index is copied; in another order: rebuilt.
   // Either way every key finds its manifold's position, without a hint and with a wrong one.
@@ -112,14 +118,21 @@ TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
   copied.size_for_step(unique.size());
   rebuilt.size_for_step(reordered.size());
   for (std::size_t i = 0; i < unique.size(); ++i) {
-    copied.step_entry(i).key = contact_pair_key(unique[i]);
-    rebuilt.step_entry(i).key = contact_pair_key(reordered[i]);
+    copied.place(i, static_cast<std::uint32_t>(i));
+    copied.slot_entry(i).key = contact_pair_key(unique[i]);
+    rebuilt.place(i, static_cast<std::uint32_t>(i));
+    rebuilt.slot_entry(i).key = contact_pair_key(reordered[i]);
   }
   for (std::size_t i = 0; i < unique.size(); ++i) {
     const ContactPairKey k = contact_pair_key(unique[i]);
     ASSERT_NE(next.find(k), nullptr);
     EXPECT_EQ(next.find(k)->manifold.point_count, static_cast<int>(i) + 1);
-    EXPECT_EQ(next.find(k, 0), next.find(k)) << "a wrong hint falls back to the index";
+    EXPECT_EQ(next.find(k, i), next.find(k)) << "the right hint";
+    EXPECT_EQ(next.find(k, (i + 1) % unique.size()), next.find(k))
+        << "a wrong hint falls back to the index";
+    EXPECT_EQ(&next.at_position(i), next.find(k));
+    EXPECT_TRUE(next.same_key_at(i, unique[i]));
+    EXPECT_FALSE(next.same_key_at(i, unique[(i + 1) % unique.size()]));
     EXPECT_EQ(copied.find(k), &copied.entries()[i]);
     ASSERT_NE(rebuilt.find(k), nullptr);
     EXPECT_EQ(rebuilt.find(k)->key, k);
@@ -145,6 +158,26 @@ TEST(ContactCache, InsertRefusesARepeatAndErasingABodyKeepsTheRestFound) {
     ASSERT_NE(e, nullptr) << body;
     EXPECT_EQ(e->manifold.point_count, static_cast<int>(body));
   }
+}
+
+TEST(ContactCache, ErasingABodyKeepsTheOthersInInputOrderWhateverTheirSlots) {
+  // A step's cache: three manifolds whose entries sit in the reverse of their input order.
+  const std::vector<ContactManifold> step = {manifold(1, 2, 0), manifold(3, 4, 0),
+                                             manifold(5, 6, 0)};
+  ContactCache empty, cache;
+  ASSERT_EQ(cache.index_step(step, empty), ContactCache::kNoRepeat);
+  cache.size_for_step(step.size());
+  for (std::size_t i = 0; i < step.size(); ++i) {
+    const auto slot = static_cast<std::uint32_t>(step.size() - 1 - i);
+    cache.place(i, slot);
+    cache.slot_entry(slot).key = contact_pair_key(step[i]);
+  }
+  cache.erase_body((std::uint64_t{1} << 32) | 4u);  // (3, 4) goes
+  ASSERT_EQ(cache.size(), 2u);
+  EXPECT_EQ(cache.at_position(0).key, contact_pair_key(step[0]));
+  EXPECT_EQ(cache.at_position(1).key, contact_pair_key(step[2]));
+  EXPECT_TRUE(cache.same_key_at(1, step[2])) << "the keys' own array follows";
+  EXPECT_EQ(cache.find(contact_pair_key(step[2]), 1), &cache.at_position(1));
 }
 
 }  // namespace

@@ -7,11 +7,11 @@ namespace softstep {
 
 bool ContactCache::insert(const ContactPairKey& key, const CachedManifold& manifold) {
   if (entries_.empty()) index_.reset(0);
-  if (index_.insert(key, static_cast<std::uint32_t>(entries_.size())) !=
-      ContactKeyIndex::kAbsent) {
-    return false;
-  }
+  const auto position = static_cast<std::uint32_t>(entries_.size());
+  if (index_.insert(key, position) != ContactKeyIndex::kAbsent) return false;
   entries_.push_back({key, manifold});
+  keys_.push_back(key);
+  slot_of_.push_back(position);
   return true;
 }
 
@@ -29,13 +29,15 @@ std::size_t ContactCache::index_step(std::span<const ContactManifold> manifolds,
   // A scene at rest hands the same manifolds in the same order step after step: their keys
   // are then the previous step's, which were unique, at the same positions, and so is the index.
   if (unchanged) {
-    index_ = previous.index_;  // the same size: a copy into the memory it has
+    index_ = previous.index_;  // the same size: copies into the memory they have
+    keys_ = previous.keys_;
     return kNoRepeat;
   }
   index_.reset(manifolds.size());
+  keys_.resize(manifolds.size());
   for (std::size_t i = 0; i < manifolds.size(); ++i) {
-    if (index_.insert(contact_pair_key(manifolds[i]), static_cast<std::uint32_t>(i)) !=
-        ContactKeyIndex::kAbsent) {
+    keys_[i] = contact_pair_key(manifolds[i]);
+    if (index_.insert(keys_[i], static_cast<std::uint32_t>(i)) != ContactKeyIndex::kAbsent) {
       return i;
     }
   }
@@ -43,12 +45,21 @@ std::size_t ContactCache::index_step(std::span<const ContactManifold> manifolds,
 }
 
 void ContactCache::erase_body(std::uint64_t body_word) {
-  std::erase_if(entries_, [body_word](const ContactCacheEntry& e) {
-    return e.key.low == body_word || e.key.high == body_word;
-  });
+  // Rebuilt in input order, each entry at its own position: the order insert() keeps.
+  PagedVector<ContactCacheEntry> kept;
+  kept.reserve(entries_.size());
+  for (std::size_t position = 0; position < slot_of_.size(); ++position) {
+    const ContactCacheEntry& e = at_position(position);
+    if (e.key.low != body_word && e.key.high != body_word) kept.push_back(e);
+  }
+  entries_.swap(kept);
+  keys_.resize(entries_.size());
+  slot_of_.resize(entries_.size());
   index_.reset(entries_.size());
   for (std::size_t i = 0; i < entries_.size(); ++i) {
-    index_.insert(entries_[i].key, static_cast<std::uint32_t>(i));
+    keys_[i] = entries_[i].key;
+    slot_of_[i] = static_cast<std::uint32_t>(i);
+    index_.insert(keys_[i], static_cast<std::uint32_t>(i));
   }
 }
 
@@ -58,7 +69,7 @@ void read_out(const ContactCache& cache, std::vector<ContactReading>& readings) 
   };
   readings.resize(cache.size());
   for (std::size_t i = 0; i < cache.size(); ++i) {
-    const ContactCacheEntry& e = cache.entries()[i];
+    const ContactCacheEntry& e = cache.at_position(i);
     const CachedManifold& c = e.manifold;
     ContactReading& r = readings[i];
     r = ContactReading{};

@@ -1,6 +1,15 @@
 // The contacts' warm-start cache: what each manifold of a step left for the next step, found
-// by its body pair and key. Flat: the entries are the step's manifolds in input order, beside
-// a ContactKeyIndex from their keys to their positions. Both keep their memory between steps.
+// by its body pair and key. Flat: the entries in the order the step's solver met its manifolds
+// (its lanes' order, then the manifolds it left out, in input order), the keys in input order,
+// where each manifold's entry is (slot_of), and a ContactKeyIndex from the keys to their input
+// positions. All keep their memory between steps.
+// Why two orders: the solver packs and reads back its lanes colour by colour, which meets the
+// manifolds' input positions at random. A scene that hands the same manifolds step after step
+// is coloured the same way every step, so entries kept in the solver's order are read by the
+// next step's packing and written by its read-back front to back, not a 232-byte entry at a
+// random place each. The checks compare each manifold's key with last step's at the same
+// input position: the keys' own array, in input order, keeps that a walk through 24-byte
+// records.
 #pragma once
 
 #include <Eigen/Core>
@@ -56,31 +65,48 @@ class ContactCache {
  public:
   bool empty() const { return entries_.empty(); }
   std::size_t size() const { return entries_.size(); }
+  // In no order that means anything to a caller (see the top of the file).
   std::span<const ContactCacheEntry> entries() const { return entries_; }
+  // The entry of the manifold at this input position of the step that wrote the cache (or
+  // of the insert() at that count).
+  const ContactCacheEntry& at_position(std::size_t position) const {
+    return entries_[slot_of_[position]];
+  }
 
-  // The entry of this key, or nullptr. hint: where the key likely is (a manifold's position in
-  // its step: scenes tend to hand their manifolds in the same order every step), looked at
-  // before the index. The index's answer is checked too: an index that fell out of step with
-  // the entries would otherwise hand a manifold another's impulses, silently; the compare
-  // costs nothing where the hint hits, as it does every step of a scene in a fixed order.
+  // The entry of this key, or nullptr. hint: the input position the key likely had (a
+  // manifold's position in its step: scenes tend to hand their manifolds in the same order
+  // every step), looked at before the index. The index's answer is checked too: an index that
+  // fell out of step with the entries would otherwise hand a manifold another's impulses,
+  // silently; the compare costs nothing where the hint hits, as it does every step of a scene
+  // in a fixed order.
   const ContactCacheEntry* find(const ContactPairKey& key, std::size_t hint = ~std::size_t{0}) const {
-    if (hint < entries_.size() && entries_[hint].key == key) return &entries_[hint];
+    if (hint < slot_of_.size()) {
+      const ContactCacheEntry& e = entries_[slot_of_[hint]];
+      if (e.key == key) return &e;
+    }
     const std::uint32_t at = index_.find(key);
-    if (at >= entries_.size() || !(entries_[at].key == key)) return nullptr;
-    return &entries_[at];
+    if (at >= slot_of_.size()) return nullptr;
+    const ContactCacheEntry& e = entries_[slot_of_[at]];
+    return e.key == key ? &e : nullptr;
+  }
+  // Starts loading what find(key, position) reads first.
+  void prefetch_position(std::size_t position) const {
+    if (position < slot_of_.size()) prefetch_object(entries_[slot_of_[position]]);
   }
 
   // Adds an entry unless its key is there already (then false, nothing changed).
   bool insert(const ContactPairKey& key, const CachedManifold& manifold);
 
-  // Drops the entries that name this body (BodyId as generation << 32 | slot).
+  // Drops the entries that name this body (BodyId as generation << 32 | slot); the others keep
+  // their input order.
   void erase_body(std::uint64_t body_word);
 
   // A step writes its next cache in two parts. Its validation indexes the step's keys (the
   // value of each is its manifold's position) with index_step, which returns the first
   // position whose key repeats an earlier one's (or kNoRepeat); then, once the world may
-  // change, the entries are sized to the step's manifolds and each entry is written at its
-  // manifold's position (each by one thread). Until then the cache is scratch.
+  // change, the entries are sized to the step's manifolds, each manifold is given its slot
+  // (place) and each entry is written at its slot (each by one thread). Until then the cache
+  // is scratch.
   static constexpr std::size_t kNoRepeat = ~std::size_t{0};
   std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous);
   // The same when the caller has found out, as it checked the manifolds, whether their keys
@@ -89,28 +115,35 @@ class ContactCache {
   std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous,
                          bool unchanged);
   bool same_key_at(std::size_t position, const ContactManifold& m) const {
-    return position < entries_.size() && entries_[position].key == contact_pair_key(m);
+    return position < keys_.size() && keys_[position] == contact_pair_key(m);
   }
-  // Starts loading the entry at this position (when there is one) ahead of same_key_at: the
-  // entries are 232 bytes apart, and each comparison reads one line of them. (Measured only
-  // together with folding the comparison into the checks' pass: 0.90 -> 0.53 ms.)
+  // Starts loading the key at this position (when there is one) ahead of same_key_at.
+  // (Measured only together with folding the comparison into the checks' pass: 0.90 -> 0.53
+  // ms, when the keys were read out of the 232-byte entries.)
   void prefetch_key(std::size_t position) const {
-    if (position < entries_.size()) prefetch_line(&entries_[position].key);
+    if (position < keys_.size()) prefetch_line(&keys_[position]);
   }
-  void size_for_step(std::size_t manifolds) { entries_.resize(manifolds); }
-  ContactCacheEntry& step_entry(std::size_t manifold) { return entries_[manifold]; }
+  void size_for_step(std::size_t manifolds) {
+    entries_.resize(manifolds);
+    slot_of_.resize(manifolds);
+  }
+  void place(std::size_t position, std::uint32_t slot) { slot_of_[position] = slot; }
+  ContactCacheEntry& slot_entry(std::size_t slot) { return entries_[slot]; }
 
  private:
-  PagedVector<ContactCacheEntry> entries_;
-  ContactKeyIndex index_;  // key -> position in entries_
+  PagedVector<ContactCacheEntry> entries_;  // in the solver's order
+  PagedVector<ContactPairKey> keys_;        // in input order
+  std::vector<std::uint32_t> slot_of_;      // input position -> its entry in entries_
+  ContactKeyIndex index_;                   // key -> input position
 };
 
-// The readings of the step that wrote this cache (its entries are that step's manifolds in
-// input order), into `readings`, which keeps its memory.
+// The readings of the step that wrote this cache, its manifolds in input order, into
+// `readings`, which keeps its memory.
 void read_out(const ContactCache& cache, std::vector<ContactReading>& readings);
 
 // The cache's entries in the order of their keys (body pair, then key): the entries' own order
-// is the last step's input order, and the state hash and scene files need one that is not.
+// is the last step's solver's, and the state hash and scene files need one that depends on
+// neither the input's order nor the solver's.
 std::vector<const ContactCacheEntry*> sorted_entries(const ContactCache& cache);
 
 }  // namespace softstep

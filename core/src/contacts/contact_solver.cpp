@@ -371,9 +371,17 @@ class ContactSolverImpl final : public ContactSolver {
       }
       begin = end;
     }
-    // Sized here, written by the team at the manifolds' positions.
+    // Sized here, written by the team: the next cache's entries in the solver's order (what
+    // the next step's packing and read-back walk front to back when the scene keeps its order;
+    // contact_cache.hpp), then the manifolds left out.
     packed_.resize(entries_.size());
     step.next->size_for_step(manifolds.size());
+    for (std::size_t e = 0; e < entries_.size(); ++e) {
+      step.next->place(entries_[e].manifold, static_cast<std::uint32_t>(e));
+    }
+    for (std::size_t k = 0; k < left_out_.size(); ++k) {
+      step.next->place(left_out_[k], static_cast<std::uint32_t>(entries_.size() + k));
+    }
     layout_.load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
@@ -426,7 +434,7 @@ class ContactSolverImpl final : public ContactSolver {
     for (std::size_t k = mine.begin; k < mine.end; ++k) {
       const std::uint32_t index = left_out_[k];
       const ContactManifold& m = step_.manifolds[index];
-      ContactCacheEntry& next = step_.next->step_entry(index);
+      ContactCacheEntry& next = step_.next->slot_entry(entries_.size() + k);
       next.key = contact_pair_key(m);
       carry_over(m, find_match(m, next.key, index, *step_.previous), next.manifold);
     }
@@ -510,13 +518,9 @@ class ContactSolverImpl final : public ContactSolver {
       for (std::size_t k = slice.begin; k < slice.end; ++k) {
         const simd::ContactLanes<V>& g = batch.groups[r.begin + k];
         const std::size_t first = r.first_entry + k * V;
-        for (std::size_t e = first; e < first + V && e + kFetchAhead < r.end_entry; ++e) {
-          fetch_for_storing(entries_[e + kFetchAhead].manifold);
-        }
         for (int lane = 0; lane < V; ++lane) {
-          const std::uint32_t index = g.id[lane];
-          if (index == kPadding) continue;
-          read_lane<V>(g, lane, packed_[first + lane], step_.next->step_entry(index));
+          if (g.id[lane] == kPadding) continue;  // padding lanes come last
+          read_lane<V>(g, lane, packed_[first + lane], step_.next->slot_entry(first + lane));
         }
       }
     }
@@ -525,13 +529,9 @@ class ContactSolverImpl final : public ContactSolver {
   void fetch_for_packing(std::uint32_t index) const {
     const ContactManifold& m = step_.manifolds[index];
     prefetch_object(m);
-    if (index < step_.previous->size()) prefetch_object(step_.previous->entries()[index]);
+    step_.previous->prefetch_position(index);
     prefetch_object((*step_.bodies)[m.body_a.index].orientation);
     prefetch_object((*step_.bodies)[m.body_b.index].orientation);
-  }
-
-  void fetch_for_storing(std::uint32_t index) const {
-    prefetch_object(step_.next->step_entry(index));
   }
 
   template <int V>
