@@ -1,7 +1,7 @@
 // A manifold's identity across steps (its body pair and key), and a flat index from such keys
 // to positions: an open-addressing table (power-of-two size, linear probing, at most half
 // full). The step's validation fills it to find repeated keys, and the same table then indexes
-// the next warm-start cache, whose entries are the step's manifolds in input order; the next
+// the next warm-start cache by the manifolds' input positions (contact_cache.hpp); the next
 // step looks its manifolds up in it. No node per key, and its memory is kept between steps.
 #pragma once
 

@@ -72,7 +72,7 @@ int matching_point(const Match& match, std::uint32_t feature_id) {
 
 // What reading a lane back needs of its manifold besides the lanes, written while packing in
 // the solver's order: reading back then walks these in order instead of returning to each
-// manifold and to its old cache entry at random (one cache line here against six and four).
+// manifold at random (one cache line here against six).
 struct PackedManifold {
   ContactPairKey key;
   Match match;

@@ -69,7 +69,7 @@ class ContactSolver {
   virtual void restitute(const simd::BodyArrays&, const simd::SubstepContext&,
                          const simd::ContactContext&, const solver::Share&) = 0;
   // Each thread its share, after the last contact pass (a barrier between): the next cache's
-  // entries at the manifolds' input positions (the readings are read from them on demand).
+  // entries, in the solver's order (the readings are read from them on demand).
   virtual void store(const solver::Share&) = 0;
 };
 
