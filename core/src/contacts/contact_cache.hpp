@@ -89,10 +89,6 @@ class ContactCache {
     const ContactCacheEntry& e = entries_[slot_of_[at]];
     return e.key == key ? &e : nullptr;
   }
-  // Starts loading what find(key, position) reads first.
-  void prefetch_position(std::size_t position) const {
-    if (position < slot_of_.size()) prefetch_object(entries_[slot_of_[position]]);
-  }
 
   // Adds an entry unless its key is there already (then false, nothing changed).
   bool insert(const ContactPairKey& key, const CachedManifold& manifold);

@@ -97,9 +97,11 @@ PackedManifold packed_manifold(const ContactManifold& m, std::uint32_t index,
   return packed;
 }
 
-// Lanes are filled and read in the solver's order (by colour), so the manifolds, their cache
-// entries and their bodies are met at random places: each is asked from memory this many
-// manifolds ahead, so that the misses overlap instead of stalling one after another.
+// Lanes are filled and read in the solver's order (by colour), so the manifolds and their
+// bodies are met at random places: each is asked from memory this many manifolds ahead, so
+// that the misses overlap instead of stalling one after another. (Last step's cache entries
+// are in the solver's order, met front to back where the scene kept its order: fetching them
+// too made the pyramid's prepare 0.04-0.08 ms slower, 4 runs alternated, 2026-11-27.)
 constexpr std::size_t kFetchAhead = 8;
 
 // Makes every lane of the group padding, in place: building an empty group and assigning it
@@ -529,7 +531,6 @@ class ContactSolverImpl final : public ContactSolver {
   void fetch_for_packing(std::uint32_t index) const {
     const ContactManifold& m = step_.manifolds[index];
     prefetch_object(m);
-    step_.previous->prefetch_position(index);
     prefetch_object((*step_.bodies)[m.body_a.index].orientation);
     prefetch_object((*step_.bodies)[m.body_b.index].orientation);
   }
