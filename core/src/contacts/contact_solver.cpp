@@ -3,6 +3,7 @@
 #include "contacts/contact_solver.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <chrono>
 #include <cstring>
@@ -103,6 +104,10 @@ PackedManifold packed_manifold(const ContactManifold& m, std::uint32_t index,
 // are in the solver's order, met front to back where the scene kept its order: fetching them
 // too made the pyramid's prepare 0.04-0.08 ms slower, 4 runs alternated, 2026-11-27.)
 constexpr std::size_t kFetchAhead = 8;
+
+// Manifolds per chunk of packing that a thread takes at a time (ContactSolverImpl::pack): a
+// few microseconds of work, against an atomic add per chunk.
+constexpr std::uint32_t kPackChunk = 64;
 
 // Makes every lane of the group padding, in place: building an empty group and assigning it
 // wrote each byte twice (5.6 KB a group at 16 lanes; the copy held a fifth of the packing's
@@ -373,6 +378,7 @@ class ContactSolverImpl final : public ContactSolver {
       }
       begin = end;
     }
+    cut_pack_chunks();
     // Sized here, written by the team: the next cache's entries in the solver's order (what
     // the next step's packing and read-back walk front to back when the scene keeps its order;
     // contact_cache.hpp), then the manifolds left out.
@@ -392,7 +398,17 @@ class ContactSolverImpl final : public ContactSolver {
   const ContactLayout& layout() const override { return layout_; }
 
   void pack(const solver::Share& share) override {
-    for (std::uint32_t c = 0; c < layout_.colors; ++c) pack_share<W>(colors_[c], share);
+    // Chunks taken in turn rather than a fixed half each: the thread that idled through the
+    // caller's collision wakes with cold caches and packed its half in 1.4-2.3 ms against the
+    // caller's 1.0-1.1 (the pyramid, 2026-11-26), and the stage waited for it. Which thread
+    // fills a group changes nothing in it.
+    for (;;) {
+      const std::size_t i = next_pack_chunk_.fetch_add(1, std::memory_order_relaxed);
+      if (i >= pack_chunks_.size()) break;
+      const PackChunk& chunk = pack_chunks_[i];
+      ContactBatch<W>& batch = colors_[chunk.color];
+      pack_groups<W>(batch, batch.runs[chunk.run], chunk.begin, chunk.end);
+    }
     pack_share<1>(overflow_, share);
   }
 
@@ -480,21 +496,44 @@ class ContactSolverImpl final : public ContactSolver {
   void pack_share(ContactBatch<V>& batch, const solver::Share& share) {
     for (const ContactRun& r : batch.runs) {
       const solver::Slice slice = solver::slice_of(r.end - r.begin, share);
-      for (std::size_t k = slice.begin; k < slice.end; ++k) {
-        simd::ContactLanes<V>& g = batch.groups[r.begin + k];
-        empty_in_place(g);
-        const std::size_t first = r.first_entry + k * V;
-        const std::size_t last = std::min<std::size_t>(first + V, r.end_entry);
-        for (std::size_t e = first; e < last; ++e) {
-          if (e + kFetchAhead < r.end_entry) fetch_for_packing(entries_[e + kFetchAhead].manifold);
-          const std::uint32_t index = entries_[e].manifold;
-          const ContactManifold& m = step_.manifolds[index];
-          packed_[e] = packed_manifold(m, index, *step_.previous);
-          fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
-                       step_.warm_start ? packed_[e].match : Match{});
+      pack_groups<V>(batch, r, slice.begin, slice.end);
+    }
+  }
+
+  // Groups [begin, end) of run r (counted from the run's first).
+  template <int V>
+  void pack_groups(ContactBatch<V>& batch, const ContactRun& r, std::size_t begin,
+                   std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k) {
+      simd::ContactLanes<V>& g = batch.groups[r.begin + k];
+      empty_in_place(g);
+      const std::size_t first = r.first_entry + k * V;
+      const std::size_t last = std::min<std::size_t>(first + V, r.end_entry);
+      for (std::size_t e = first; e < last; ++e) {
+        if (e + kFetchAhead < r.end_entry) fetch_for_packing(entries_[e + kFetchAhead].manifold);
+        const std::uint32_t index = entries_[e].manifold;
+        const ContactManifold& m = step_.manifolds[index];
+        packed_[e] = packed_manifold(m, index, *step_.previous);
+        fill_lane<V>(g, static_cast<int>(e - first), index, m, *step_.bodies,
+                     step_.warm_start ? packed_[e].match : Match{});
+      }
+    }
+  }
+
+  // The colours' groups in chunks of about kPackChunk manifolds, in the solver's order.
+  void cut_pack_chunks() {
+    constexpr std::uint32_t kGroups = std::max<std::uint32_t>(1, kPackChunk / W);
+    pack_chunks_.clear();
+    for (std::uint32_t c = 0; c < layout_.colors; ++c) {
+      const std::vector<ContactRun>& runs = colors_[c].runs;
+      for (std::uint32_t r = 0; r < runs.size(); ++r) {
+        const std::uint32_t groups = runs[r].end - runs[r].begin;
+        for (std::uint32_t k = 0; k < groups; k += kGroups) {
+          pack_chunks_.push_back({c, r, k, std::min(k + kGroups, groups)});
         }
       }
     }
+    next_pack_chunk_.store(0, std::memory_order_relaxed);
   }
 
   // The same slices as run_share's, so each thread clears the groups it then solves.
@@ -572,6 +611,11 @@ class ContactSolverImpl final : public ContactSolver {
   std::vector<Entry> entries_;   // sorted by order_key
   std::array<std::uint32_t, kOrderKeys> counts_{};
   std::vector<std::uint32_t> left_out_;  // manifolds not in lanes, in input order
+  struct PackChunk {
+    std::uint32_t color, run, begin, end;  // groups [begin, end) of colors_[color].runs[run]
+  };
+  std::vector<PackChunk> pack_chunks_;
+  std::atomic<std::size_t> next_pack_chunk_{0};  // the next chunk a thread takes
   // Per entry (in the solver's order, so that each thread writes a range of its own).
   PagedVector<PackedManifold> packed_;
   std::vector<std::uint32_t> body_colors_;  // per body slot, scratch of load (all zero between)
