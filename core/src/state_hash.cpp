@@ -11,7 +11,8 @@ namespace softstep {
 namespace {
 
 // The contacts' warm-start impulses, in the order of their keys (the cache's own order is the
-// last step's input order). Nothing while the cache is empty, so worlds without contacts hash as before.
+// last step's solver's, or the input's after a destruction or a scene load). Nothing while the
+// cache is empty, so worlds without contacts hash as before.
 void hash_contact_cache(StateHasher& h, const ContactCache& cache) {
   for (const auto* entry : sorted_entries(cache)) {
     const ContactPairKey& k = entry->key;

@@ -1,6 +1,7 @@
 // The contacts' warm-start cache: what each manifold of a step left for the next step, found
 // by its body pair and key. Flat: the entries in the order the step's solver met its manifolds
-// (its lanes' order, then the manifolds it left out, in input order), the keys in input order,
+// (its lanes' order, then the manifolds it left out, in input order; after erase_body or a
+// scene file's insert()s, in input order), the keys in input order,
 // where each manifold's entry is (slot_of), and a ContactKeyIndex from the keys to their input
 // positions. All keep their memory between steps.
 // Why two orders: the solver packs and reads back its lanes colour by colour, which meets the
@@ -127,7 +128,7 @@ class ContactCache {
   ContactCacheEntry& slot_entry(std::size_t slot) { return entries_[slot]; }
 
  private:
-  PagedVector<ContactCacheEntry> entries_;  // in the solver's order
+  PagedVector<ContactCacheEntry> entries_;  // in the solver's order (see the top of the file)
   PagedVector<ContactPairKey> keys_;        // in input order
   std::vector<std::uint32_t> slot_of_;      // input position -> its entry in entries_
   ContactKeyIndex index_;                   // key -> input position

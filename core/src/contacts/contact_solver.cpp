@@ -616,7 +616,8 @@ class ContactSolverImpl final : public ContactSolver {
   };
   std::vector<PackChunk> pack_chunks_;
   std::atomic<std::size_t> next_pack_chunk_{0};  // the next chunk a thread takes
-  // Per entry (in the solver's order, so that each thread writes a range of its own).
+  // Per entry, in the solver's order: written by whichever thread packs its chunk, read by
+  // store's shares (the barriers between order them).
   PagedVector<PackedManifold> packed_;
   std::vector<std::uint32_t> body_colors_;  // per body slot, scratch of load (all zero between)
   std::uint64_t used_colors_ = 0;

@@ -47,8 +47,9 @@ class ContactSolver {
   // Manifolds whose bodies are all static or asleep are left out; their cache entries carry
   // over. Nothing of the world is read after this but the step's manifolds and bodies.
   virtual void load(const ContactStep& step) = 0;
-  // The team's threads take the groups in chunks, before prepare (a barrier between): matches
-  // each manifold with the last step's cache (once: store reuses the match) and fills its lane.
+  // The team's threads take the colours' groups in chunks (the overflow: each its share),
+  // before prepare (a barrier between): matches each manifold with the last step's cache
+  // (once: store reuses the match) and fills its lane.
   virtual void pack(const solver::Share&) = 0;
   virtual const ContactLayout& layout() const = 0;
   bool empty() const { return layout().manifolds == 0; }
