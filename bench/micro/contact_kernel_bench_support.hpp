@@ -174,9 +174,14 @@ PackedContacts<W> pack_pyramid(int base) {
       g.friction[lane] = 0.6f;
       for (int q = 0; q < kContactPoints; ++q) {
         ContactPointLanes<W>& lanes_q = g.point[q];
+        // The arms in the manifold's frame (t1, t2, n), as the kernels take them.
+        const std::array<float, 3>* axes[3] = {&m.tangent[0], &m.tangent[1], &m.normal};
         for (int k = 0; k < 3; ++k) {
-          lanes_q.r_a[k][lane] = m.r_a[q][k];
-          lanes_q.r_b[k][lane] = m.r_b[q][k];
+          const auto along = [&](const std::array<float, 3>& r) {
+            return (*axes[k])[0] * r[0] + (*axes[k])[1] * r[1] + (*axes[k])[2] * r[2];
+          };
+          lanes_q.r_a[k][lane] = along(m.r_a[q]);
+          lanes_q.r_b[k][lane] = along(m.r_b[q]);
         }
         lanes_q.base_separation[lane] = m.base_separation;
         lanes_q.normal_impulse[lane] = 0.5f;  // warm: about a quarter of a box's weight share

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <bit>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 #include <tuple>
@@ -140,6 +141,24 @@ FourVectors surface_points(const FourVectors& core, double offset, const Eigen::
   return {core.x + offset * n.x(), core.y + offset * n.y(), core.z + offset * n.z()};
 }
 
+// The kernels solve in the frame (t1, t2, n), which must be a rotation: the normal is checked
+// unit to 1e-4 (contact_validation.cpp) and made unit here, unless it already is to far below
+// float precision (a normalized double normal: the square root and division sit on the
+// packing's critical path, 15,000 times a step on the pyramid).
+Eigen::Vector3d unit_normal(const Eigen::Vector3d& n) {
+  const double length2 = n.squaredNorm();
+  return std::abs(length2 - 1.0) <= 1e-12 ? n : Eigen::Vector3d(n / std::sqrt(length2));
+}
+
+// World vectors in the manifold's frame (t1, t2, n): their coordinates along each axis.
+FourVectors in_frame(const std::array<Eigen::Vector3d, 2>& tangents, const Eigen::Vector3d& n,
+                     const FourVectors& v) {
+  const auto along = [&](const Eigen::Vector3d& axis) {
+    return (axis.x() * v.x + axis.y() * v.y) + axis.z() * v.z;
+  };
+  return {along(tangents[0]), along(tangents[1]), along(n)};
+}
+
 template <int W>
 void put3(float (&dst)[3][W], int lane, const FourVectors& v, int point) {
   dst[0][lane] = static_cast<float>(v.x[point]);
@@ -159,7 +178,7 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   g.body_b[lane] = solver_index(b, m.body_b.index);
   g.point_count[lane] = static_cast<float>(m.point_count);
   g.points = std::max(g.points, m.point_count);
-  const Eigen::Vector3d& n = m.normal;
+  const Eigen::Vector3d n = unit_normal(m.normal);
   const auto tangents = tangent_directions(n);
   put3<W>(g.normal, lane, n);
   put3<W>(g.tangent[0], lane, tangents[0]);
@@ -171,9 +190,11 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   g.tangent_speed[1][lane] = static_cast<float>(m.tangent_speed.y());
   g.radius_a[lane] = static_cast<float>(m.radius_a);
   g.radius_b[lane] = static_cast<float>(m.radius_b);
-  put3<W>(g.rolling_impulse, lane,
-          match.cached ? Eigen::Vector3d(match.sign * match.cached->rolling_impulse)
-                       : Eigen::Vector3d::Zero());
+  if (match.cached) {
+    const Eigen::Vector3d rolling = match.sign * match.cached->rolling_impulse;
+    put3<W>(g.rolling_impulse, lane,
+            Eigen::Vector3d(tangents[0].dot(rolling), tangents[1].dot(rolling), n.dot(rolling)));
+  }
   // One point's anchors per lane; lanes past point_count hold 0 and are not stored. Each
   // element written once and made a vector by load_vectors (four_doubles.hpp says why).
   double along_a[3][4], along_b[3][4];  // axis, then point
@@ -194,11 +215,13 @@ void fill_lane(simd::ContactLanes<W>& g, int lane, std::uint32_t index, const Co
   // n . (core_b - core_a), summed as Eigen's dot sums three terms.
   const FourDoubles along_normal = (n.x() * (core_b.x - core_a.x) + n.y() * (core_b.y - core_a.y)) +
                                    n.z() * (core_b.z - core_a.z);
+  const FourVectors frame_r_a = in_frame(tangents, n, r_a);
+  const FourVectors frame_r_b = in_frame(tangents, n, r_b);
   for (int i = 0; i < m.point_count; ++i) {
     const ContactPoint& p = m.points[static_cast<std::size_t>(i)];
     auto& lanes = g.point[i];
-    put3<W>(lanes.r_a, lane, r_a, i);
-    put3<W>(lanes.r_b, lane, r_b, i);
+    put3<W>(lanes.r_a, lane, frame_r_a, i);
+    put3<W>(lanes.r_b, lane, frame_r_b, i);
     lanes.base_separation[lane] = static_cast<float>(p.separation - along_normal[i]);
     const int k = matching_point(match, p.feature_id);
     double normal = 0.0;
@@ -229,7 +252,10 @@ void read_lane(const simd::ContactLanes<W>& g, int lane, const PackedManifold& p
   next.body_a = static_cast<std::uint32_t>(packed.a_is_low ? packed.key.low : packed.key.high);
   next.point_count = packed.point_count;
   next.new_points = packed.new_points;
-  next.rolling_impulse = get3(g.rolling_impulse);
+  const Eigen::Vector3d rolling = get3(g.rolling_impulse);  // in the manifold's frame
+  if (!rolling.isZero(0.0)) {
+    next.rolling_impulse = rolling.x() * t1 + rolling.y() * t2 + rolling.z() * get3(g.normal);
+  }
   for (int i = 0; i < packed.point_count; ++i) {
     const auto& p = g.point[i];
     const auto s = static_cast<std::size_t>(i);
