@@ -356,7 +356,10 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   // tiny inertia then spins through the whole first step (0.5 m joint error in the "tiny
   // inertia" hard case). The first sub-step's impulses are a force; the inertia is recomputed
   // from them before the second sub-step (0.15 m). Probing the first sub-step and restarting
-  // it with that inertia was tried, and did worse (0.35 m). Sub-steps finer than
+  // it with that inertia was tried, and did worse (0.35 m). The refresh reaches the joints'
+  // rows only: the contacts' lanes keep the step-start inertia the contact prepare turned into
+  // each manifold's frame (contact_kernel.hpp), their effective masses and impulses alike,
+  // for the rest of that step. Sub-steps finer than
   // kGeometricTimeFloor recompute it before every later sub-step of that step: one sub-step's
   // impulses while the tension builds are too small a force (at 64 sub-steps the case blew
   // up with the floor alone). At the default sub-step and coarser, doing so measured worse

@@ -12,7 +12,8 @@ namespace softstep::validation {
 
 namespace {
 
-// The normal must be unit to float precision: the kernels use it as it is.
+// The normal must be nearly unit (a direction, not a force); the packing makes it exactly unit
+// for the kernels' frame (contact_solver.cpp, unit_normal).
 constexpr double kUnitTolerance = 1e-4;
 
 std::string bounded(std::string_view rule, double low, double high) {

@@ -24,9 +24,11 @@
 // axes are the unit axes, so a row's velocity and its impulse's effect take a few products
 // where the world frame took a cross product and an inertia product each: per point and pass
 // about half the arithmetic, for 14 more lanes per lane group (the frame inertias and inverse
-// masses) and no mass records read by the iterations. Only each body's velocity change goes
-// back to the world frame (a lane that applies nothing leaves its bodies' velocities bit for
-// bit).
+// masses) and no mass records read by the iterations. (So the contacts keep the step-start
+// inertia through the step, where the joints' rows see the geometric inertia refreshed after
+// the first sub-step of a step with new joints, step.cpp.) Only each body's velocity change
+// goes back to the world frame (a lane that applies nothing leaves its bodies' velocities bit
+// for bit, but for a -0 that may come back +0).
 #pragma once
 
 #include <cstdint>
