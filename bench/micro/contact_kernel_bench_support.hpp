@@ -175,13 +175,17 @@ PackedContacts<W> pack_pyramid(int base) {
       for (int q = 0; q < kContactPoints; ++q) {
         ContactPointLanes<W>& lanes_q = g.point[q];
         // The arms in the manifold's frame (t1, t2, n), as the kernels take them.
-        const std::array<float, 3>* axes[3] = {&m.tangent[0], &m.tangent[1], &m.normal};
+        const auto vec = [](const std::array<float, 3>& a) {
+          return Vec3<float>{a[0], a[1], a[2]};
+        };
+        const ContactFrame<float> frame{vec(m.normal), vec(m.tangent[0]), vec(m.tangent[1])};
+        const Vec3<float> r_a = to_frame(frame, vec(m.r_a[q]));
+        const Vec3<float> r_b = to_frame(frame, vec(m.r_b[q]));
+        const float* along_a[3] = {&r_a.x, &r_a.y, &r_a.z};
+        const float* along_b[3] = {&r_b.x, &r_b.y, &r_b.z};
         for (int k = 0; k < 3; ++k) {
-          const auto along = [&](const std::array<float, 3>& r) {
-            return (*axes[k])[0] * r[0] + (*axes[k])[1] * r[1] + (*axes[k])[2] * r[2];
-          };
-          lanes_q.r_a[k][lane] = along(m.r_a[q]);
-          lanes_q.r_b[k][lane] = along(m.r_b[q]);
+          lanes_q.r_a[k][lane] = *along_a[k];
+          lanes_q.r_b[k][lane] = *along_b[k];
         }
         lanes_q.base_separation[lane] = m.base_separation;
         lanes_q.normal_impulse[lane] = 0.5f;  // warm: about a quarter of a box's weight share

@@ -266,16 +266,30 @@ struct BodyLanes {
 // than registers), a BodyLanes went through a block copy of its 21 batches per body (rep movs),
 // and a zero-filled JointBodies through a memset of all 51: most of the fixed cost of a cheap
 // kernel at 8 lanes (the wheel's locks).
+// The velocity records' part of a BodyLanes (gather_body_into; the contacts gather it alone).
+template <class L>
+SOFTSTEP_INLINE void gather_velocity_into(BodyLanes<L>& out, const VelocityRecord* vel,
+                                          const std::int32_t* index) {
+  const Rows8<L> a = gather_rows<L>(vel, index);
+  out.v = {a.r[0], a.r[1], a.r[2]};
+  out.w = {a.r[3], a.r[4], a.r[5]};
+}
+
+// The delta records' part of a BodyLanes.
+template <class L>
+SOFTSTEP_INLINE void gather_delta_into(BodyLanes<L>& out, const DeltaRecord* delta,
+                                       const std::int32_t* index) {
+  const Rows8<L> d = gather_rows<L>(delta, index);
+  out.dq = {d.r[3], d.r[4], d.r[5], d.r[6]};
+  out.dp = {d.r[0], d.r[1], d.r[2]};
+}
+
 template <class L>
 SOFTSTEP_INLINE void gather_body_into(BodyLanes<L>& out, const VelocityRecord* vel,
                                       const DeltaRecord* delta, const MassRecord* mass,
                                       const std::int32_t* index) {
-  const Rows8<L> a = gather_rows<L>(vel, index);
-  out.v = {a.r[0], a.r[1], a.r[2]};
-  out.w = {a.r[3], a.r[4], a.r[5]};
-  const Rows8<L> d = gather_rows<L>(delta, index);
-  out.dq = {d.r[3], d.r[4], d.r[5], d.r[6]};
-  out.dp = {d.r[0], d.r[1], d.r[2]};
+  gather_velocity_into(out, vel, index);
+  gather_delta_into(out, delta, index);
   const MassLanes<L> m = gather_mass<L>(mass, index);
   out.inv_mass = m.inv_mass;
   out.inv_inertia = m.inv_inertia;

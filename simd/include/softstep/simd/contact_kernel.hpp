@@ -164,14 +164,9 @@ template <class L, ContactGather kGather>
 SOFTSTEP_INLINE void gather_contact_body(BodyLanes<L>& out, const BodyArrays& bodies,
                                          const std::int32_t* index,
                                          const float (&inv_mass)[kWidth<L>]) {
-  const Rows8<L> v = gather_rows<L>(bodies.velocity, index);
-  out.v = {v.r[0], v.r[1], v.r[2]};
-  out.w = {v.r[3], v.r[4], v.r[5]};
-  if constexpr (kGather == ContactGather::VelocityAndDelta) {
-    const Rows8<L> d = gather_rows<L>(bodies.delta, index);
-    out.dq = {d.r[3], d.r[4], d.r[5], d.r[6]};
-    out.dp = {d.r[0], d.r[1], d.r[2]};
-  }
+  gather_velocity_into(out, bodies.velocity, index);
+  if constexpr (kGather == ContactGather::VelocityAndDelta)
+    gather_delta_into(out, bodies.delta, index);
   out.inv_mass = load<L>(inv_mass);
   out.movable = out.inv_mass > L(0.0f);
 }
