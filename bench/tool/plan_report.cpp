@@ -45,10 +45,12 @@ void print_plan(const StepPlan& plan) {
   std::printf("  stages         %s\n", stages.empty() ? "none" : stages.c_str());
   std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
               plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
-  std::printf("  solver         %s: %zu tree island(s) exact (%zu joints), iterative: %zu with a "
-              "loop, %zu with other joints\n",
-              solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints,
-              plan.loop_islands, plan.other_islands);
+  std::printf(
+      "  solver         %s: %zu tree island(s) exact (%zu joints)%s, iterative: %zu with a "
+      "loop, %zu with other joints\n",
+      solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints,
+      plan.tree_islands_whole ? " stepped whole (each its sub-steps in turn)" : "",
+      plan.loop_islands, plan.other_islands);
   if (plan.contact_manifolds > 0) {
     std::printf("  contacts       %zu manifolds, %zu points, %zu colours, %zu in overflow; rows: "
                 "normal%s%s; %s\n",
@@ -67,11 +69,10 @@ void print_plan(const StepPlan& plan) {
 nlohmann::json plan_json(const StepPlan& plan) {
   nlohmann::json j;
   j["specialized"] = plan.specialized ? 1 : 0;
-  j["solver"] = {{"mode", solver_mode_name(plan.solver)},
-                 {"tree_islands", plan.tree_islands},
-                 {"tree_joints", plan.tree_joints},
-                 {"loop_islands", plan.loop_islands},
-                 {"other_islands", plan.other_islands}};
+  j["solver"] = {
+      {"mode", solver_mode_name(plan.solver)}, {"tree_islands", plan.tree_islands},
+      {"tree_joints", plan.tree_joints},       {"loop_islands", plan.loop_islands},
+      {"other_islands", plan.other_islands},   {"tree_islands_whole", plan.tree_islands_whole}};
   j["stages"] = nlohmann::json::array();
   for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
   j["effects"] = {{"gravity", plan.gravity},

@@ -391,6 +391,10 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   const bool capturing = w.capturing;
   const Impl::RestTest rest = w.rest_test(dt);
   std::atomic<bool> some_ready{false};  // read after the team has joined
+  // Tree islands stepped whole (tree_solver.hpp, whole_substeps): 100 chains of 1,000 links
+  // 1.30x faster on one thread and 1.36x on two than stage by stage, whose every pass streamed
+  // the islands' 140 MB of state through memory; the profile counts it all as `solve`.
+  const bool whole = w.plan.tree_islands_whole && !has_contacts && !capturing && !refresh_inertia;
   if (capturing) w.capture_step_start(h, rigid_solve_hertz(s, h));
 
   // Every thread runs every stage on its share; team_barrier orders the stages.
@@ -431,7 +435,21 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
         }
       });
     }
-    for (int sub = 0; sub < s.substeps; ++sub) {
+    if (whole) {
+      stage(Stage::Solve, [&] {
+        solver.clear_impulses(share);
+        solver::team_barrier(share);
+        w.trees.whole_substeps(w.joints, w.bodies, w.solver_bodies, solver, ctx,
+                               {.substeps = s.substeps,
+                                .gravity = gravity,
+                                .damping = damping,
+                                .torque = torque,
+                                .relax = planned(PlanStage::TreeRelax)},
+                               share);
+        solver::team_barrier(share);
+      });
+    }
+    for (int sub = 0; sub < s.substeps && !whole; ++sub) {
       if (planned(PlanStage::SpinLimit)) {
         stage(Stage::IntegrateVelocities, [&] {
           if (refreshes_before(sub)) {

@@ -85,6 +85,8 @@ void World::Impl::build_plan() {
   std::size_t lane_joints = 0;
   for (const PlanKernel& k : p.kernels) lane_joints += k.joints;
   const bool exact_only = exact && trees.counts().tree_joints == lane_joints;
+  // Kinematic bodies and bodies without joints are awake but in no island: stage by stage.
+  p.tree_islands_whole = exact_only && trees.counts().tree_bodies == p.awake_bodies;
   const auto add = [&](bool on, PlanStage stage) {
     if (on) p.stages.push_back(stage);
   };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -156,6 +157,12 @@ class LaneSolver {
                                     const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, const simd::SubstepContext& ctx,
                                    const solver::Share& share) = 0;
+  // The same for the given records only (one thread's, no Share): a tree island's bodies.
+  virtual void integrate_velocities_of(SolverBodies& bodies, std::span<const std::int32_t> records,
+                                       const simd::SubstepContext& ctx, bool gravity, bool damping,
+                                       bool torque) = 0;
+  virtual void integrate_positions_of(SolverBodies& bodies, std::span<const std::int32_t> records,
+                                      const simd::SubstepContext& ctx) = 0;
 };
 
 // The slot of a live body or joint; rejects unknown and destroyed ids naming `field` (world.cpp).

@@ -78,6 +78,12 @@ struct StepPlan {
   std::size_t tree_joints = 0;    // the joints of those islands
   std::size_t loop_islands = 0;   // a loop through movable bodies: solved iteratively
   std::size_t other_islands = 0;  // a joint kind or spring the exact pass lacks: iterative
+  // Every awake body is in an exactly solved island and no joint runs a Gauss-Seidel pass:
+  // each island runs the step's sub-steps in turn (integration, exact solve, integration,
+  // exact relax) while its state is in cache, rather than all islands once per stage; the
+  // same bits either way. A step with contacts, the first step after new joints (its inertia
+  // refresh) and a captured step run stage by stage.
+  bool tree_islands_whole = false;
   std::vector<PlanKernel> kernels;    // ordered by type, then variant
   std::size_t awake_bodies = 0;       // movable bodies integrated each sub-step
   std::size_t sleeping_islands = 0;

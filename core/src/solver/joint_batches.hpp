@@ -74,6 +74,10 @@ inline constexpr int kBodyBlock = 8;
 struct BodyKernels {
   IntegrateVelocities integrate_velocities[2][2][2];
   IntegratePositions integrate_positions;
+  // The same over single records (each entry one body's record, one lane wide: the same bits
+  // as in a block), for bodies that do not fill blocks: a tree island's, stepped on its own.
+  IntegrateVelocities integrate_velocity_records[2][2][2];
+  IntegratePositions integrate_position_records;
 };
 
 template <int W>

@@ -7,16 +7,29 @@
 #include <utility>
 
 #include "solver/joint_batches.hpp"
+#include "solver/lane_types.hpp"
 
 namespace softstep::solver {
 
-template <class L, bool kGravity, bool kDamping, bool kTorque>
+// Each entry of `blocks` is the first of kBlock records (kBodyBlock, or 1 for single records).
+template <class L, int kBlock, bool kGravity, bool kDamping, bool kTorque>
 void integrate_velocity_blocks(simd::VelocityRecord* v, const simd::ForceRecord* f,
                                const std::int32_t* blocks, std::size_t count,
                                const simd::SubstepContext& ctx) {
   for (std::size_t i = 0; i < count; ++i) {
-    for (int lane = 0; lane < kBodyBlock; lane += simd::kWidth<L>) {
+    for (int lane = 0; lane < kBlock; lane += simd::kWidth<L>) {
       simd::integrate_velocities<L, kGravity, kDamping, kTorque>(v, f, blocks[i] + lane, ctx);
+    }
+  }
+}
+
+template <class L, int kBlock>
+void integrate_position_blocks(simd::DeltaRecord* d, simd::VelocityRecord* v,
+                               const std::int32_t* blocks, std::size_t count,
+                               const simd::SubstepContext& ctx) {
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int lane = 0; lane < kBlock; lane += simd::kWidth<L>) {
+      simd::integrate_positions<L>(d, v, blocks[i] + lane, ctx);
     }
   }
 }
@@ -26,18 +39,14 @@ BodyKernels make_body_kernels() {
   BodyKernels t;
   [&]<int... I>(std::integer_sequence<int, I...>) {  // [gravity][damping][torque]
     ((t.integrate_velocities[I >> 2][(I >> 1) & 1][I & 1] =
-          integrate_velocity_blocks<L, (I & 4) != 0, (I & 2) != 0, (I & 1) != 0>),
+          integrate_velocity_blocks<L, kBodyBlock, (I & 4) != 0, (I & 2) != 0, (I & 1) != 0>),
+     ...);
+    ((t.integrate_velocity_records[I >> 2][(I >> 1) & 1][I & 1] =
+          integrate_velocity_blocks<ScalarLane, 1, (I & 4) != 0, (I & 2) != 0, (I & 1) != 0>),
      ...);
   }(std::make_integer_sequence<int, 8>());
-  t.integrate_positions = [](simd::DeltaRecord* d, simd::VelocityRecord* v,
-                             const std::int32_t* blocks, std::size_t count,
-                             const simd::SubstepContext& ctx) {
-    for (std::size_t i = 0; i < count; ++i) {
-      for (int lane = 0; lane < kBodyBlock; lane += simd::kWidth<L>) {
-        simd::integrate_positions<L>(d, v, blocks[i] + lane, ctx);
-      }
-    }
-  };
+  t.integrate_positions = integrate_position_blocks<L, kBodyBlock>;
+  t.integrate_position_records = integrate_position_blocks<ScalarLane, 1>;
   return t;
 }
 

@@ -302,6 +302,19 @@ class LaneSolverImpl final : public LaneSolver {
                                         b.blocks.data() + mine.begin, mine.end - mine.begin, ctx);
   }
 
+  void integrate_velocities_of(SolverBodies& b, std::span<const std::int32_t> records,
+                               const simd::SubstepContext& ctx, bool gravity, bool damping,
+                               bool torque) override {
+    kernels_.bodies.integrate_velocity_records[gravity][damping][torque](
+        b.velocity.data(), b.force.data(), records.data(), records.size(), ctx);
+  }
+
+  void integrate_positions_of(SolverBodies& b, std::span<const std::int32_t> records,
+                              const simd::SubstepContext& ctx) override {
+    kernels_.bodies.integrate_position_records(b.delta.data(), b.velocity.data(), records.data(),
+                                               records.size(), ctx);
+  }
+
  private:
   template <class Group>
   static PassFn<Group> pass_of(const PassKernels<Group>& k, PassName which) {

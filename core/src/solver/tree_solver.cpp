@@ -204,6 +204,8 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
       ++counts_.loop_islands;  // a loop through the ground: two joints to static or kinematic
       continue;
     }
+    for (std::uint32_t s : island.bodies)
+      island.records.push_back(static_cast<std::int32_t>(s + 1));
     island.inverse_mass.resize(island.bodies.size());
     island.dv.resize(island.bodies.size());
     island.dp.resize(island.joints.size());
@@ -221,6 +223,7 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     }
     ++counts_.tree_islands;
     counts_.tree_joints += island.joints.size();
+    counts_.tree_bodies += island.bodies.size();
     islands_.push_back(std::move(island));
   }
 }
@@ -233,6 +236,32 @@ void TreeSolver::pass(const JointSlots& joints, const BodySlots& bodies,
   const Slice mine = slice_of(islands_.size(), share);
   for (std::size_t i = mine.begin; i < mine.end; ++i) {
     solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, which);
+  }
+}
+
+void TreeSolver::whole_substeps(const JointSlots& joints, const BodySlots& bodies, SolverBodies& sb,
+                                LaneSolver& lanes, const simd::SubstepContext& ctx,
+                                const Whole& whole, const Share& share) {
+  const Slice mine = slice_of(islands_.size(), share);
+  for (std::size_t i = mine.begin; i < mine.end; ++i) {
+    Island& island = islands_[i];
+    for (int sub = 0; sub < whole.substeps; ++sub) {
+      // The lanes' impulses were cleared once before (as at each sub-step's start when
+      // stepped stage by stage): only the last sub-step's passes add theirs.
+      const bool last = sub == whole.substeps - 1;
+      lanes.integrate_velocities_of(sb, island.records, ctx, whole.gravity, whole.damping,
+                                    whole.torque);
+      solve_island(island, joints, bodies, sb, lanes, ctx,
+                   {.with_bias = true,
+                    .step_start = sub == 0,
+                    .reuse_relax_factor = sub > 0,
+                    .add_impulses = last});
+      lanes.integrate_positions_of(sb, island.records, ctx);
+      if (whole.relax) {
+        solve_island(island, joints, bodies, sb, lanes, ctx,
+                     {.with_bias = false, .add_impulses = last});
+      }
+    }
   }
 }
 
@@ -328,7 +357,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       v.w[k] = static_cast<float>(now[3 + k]);
     }
   }
-  for (std::size_t k = 0; k < island.joints.size(); ++k) {
+  for (std::size_t k = 0; k < island.joints.size() && which.add_impulses; ++k) {
     const float delta[3] = {static_cast<float>(island.dp[k][0]),
                             static_cast<float>(island.dp[k][1]),
                             static_cast<float>(island.dp[k][2])};

@@ -38,6 +38,7 @@ namespace softstep::solver {
 struct TreeCounts {
   std::size_t tree_islands = 0;  // solved exactly
   std::size_t tree_joints = 0;
+  std::size_t tree_bodies = 0;
   // A loop through movable bodies, or through the ground (more than one joint to a static or
   // kinematic body): iterative.
   std::size_t loop_islands = 0;
@@ -62,11 +63,28 @@ class TreeSolver {
     // one. The bodies moved only by the position projection since, a Jacobian change of the
     // order of the remaining joint error; it saves one factor per sub-step but the first.
     bool reuse_relax_factor = false;
+    // Adds the pass's impulse changes to the joints' lane impulses (whole_substeps: the last
+    // sub-step's passes only).
+    bool add_impulses = true;
   };
   // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
   // joints' lane impulses; the relax pass also moves the bodies' positions.
   void pass(const JointSlots& joints, const BodySlots& bodies, SolverBodies& solver_bodies,
             LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which, const Share& share);
+  // The step's sub-steps, island after island (StepPlan::tree_islands_whole): each of this
+  // thread's islands runs all of them in turn, its bodies integrated on their own, while its
+  // state is in cache, instead of every island once per stage. The same operations on the
+  // same data in the same order per island as the stages run them: the same bits. Only for a
+  // step whose every awake body is in such an island, no joint runs a Gauss-Seidel pass, no
+  // contact and no inertia refresh between sub-steps; the lanes' impulses cleared before.
+  struct Whole {
+    int substeps;
+    bool gravity, damping, torque;  // the integration's terms, as the stages take them
+    bool relax;                     // the relax pass runs (relax_iterations > 0)
+  };
+  void whole_substeps(const JointSlots& joints, const BodySlots& bodies,
+                      SolverBodies& solver_bodies, LaneSolver& lanes,
+                      const simd::SubstepContext& ctx, const Whole& whole, const Share& share);
 
  private:
   struct Anchors {
@@ -74,6 +92,7 @@ class TreeSolver {
   };
   struct Island {
     std::vector<std::uint32_t> bodies;             // movable body slots (island-local order)
+    std::vector<std::int32_t> records;             // their solver records (slot + 1)
     std::vector<std::uint32_t> joints;             // joint slots
     std::vector<std::int32_t> solver_a, solver_b;  // per joint its bodies' solver records
     std::vector<TreeJoint> rows;                   // per joint, refilled each pass
