@@ -76,7 +76,8 @@ class TreeSolver {
   // state is in cache, instead of every island once per stage. The same operations on the
   // same data in the same order per island as the stages run them: the same bits. Only for a
   // step whose every awake body is in such an island, no joint runs a Gauss-Seidel pass, no
-  // contact and no inertia refresh between sub-steps; the lanes' impulses cleared before.
+  // contact, no inertia refresh between sub-steps and no capture (step.cpp); the lanes'
+  // impulses cleared before.
   struct Whole {
     int substeps;
     bool gravity, damping, torque;  // the integration's terms, as the stages take them
