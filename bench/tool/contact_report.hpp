@@ -29,6 +29,8 @@ struct ContactSamples {
   // Per such step: from its plan and profile, and the rows (NaN when the contacts were not
   // seen, as in a replayed recording: then no rows figure is printed).
   std::vector<double> manifolds, points, rows, friction_rows, load_ms, check_ms;
+  int check_threads = 1;            // the last step's (StepProfile::check_threads)
+  bool load_beside_checks = false;  // the last step's (StepProfile::contact_load_beside_checks)
   // Per step: the scene's own narrow phase before it (empty when the scene has none).
   std::vector<double> collision_ms;
   // Per such step: World::contact_readings() asked right after it (the step leaves the

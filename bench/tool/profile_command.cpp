@@ -182,13 +182,20 @@ int profile_command(ProfileOptions o) {
       if (run.contacts) {
         contact_samples.add_step(world, rows);
         contact_load_ms.push_back(profile.contact_load_ms);
-        if (samples.tracing && profile.contact_load_ms > 0.0)
-          samples.trace.add_slice("contact_load", 0, call_start_us, profile.contact_load_ms * 1e3);
+        if (samples.tracing) {
+          const double checks_us = call_start_us + profile.check_start_ms * 1e3;
+          samples.trace.add_slice("contact_checks", 0, checks_us, profile.contact_check_ms * 1e3);
+          // Beside the checks, on their first thread; otherwise just before the stages.
+          const double load_us =
+              profile.contact_load_beside_checks
+                  ? checks_us
+                  : call_start_us + (profile.team_start_ms - profile.contact_load_ms) * 1e3;
+          samples.trace.add_slice("contact_load", 0, load_us, profile.contact_load_ms * 1e3);
+        }
       }
-      // The stages count from the threads' start, which follows the contact load (the input
-      // checks and the plan before it are not traced: the slices start that much early).
+      // The stages count from the threads' start.
       samples.add(profile, std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                  call_start_us + profile.contact_load_ms * 1e3);
+                  call_start_us + profile.team_start_ms * 1e3);
       if (run.after_step) run.after_step();
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);

@@ -105,17 +105,15 @@ void StepSamples::add(const StepProfile& p, double ms, double start_us) {
   double waited = 0.0;
   for (double w : p.barrier_wait_ms) waited += w;
   wait_share.push_back(p.step_ms > 0.0 ? waited / (p.step_ms * p.threads) : 0.0);
-  // The call is the team's time (step_ms less the contact load, which runs before the team)
-  // plus the serial time.
-  const double call_ms = p.step_ms - p.contact_load_ms + p.serial_ms;
-  serial_share.push_back(call_ms > 0.0 ? p.serial_ms / call_ms : 0.0);
+  serial_share.push_back(p.call_ms > 0.0 ? p.serial_ms / p.call_ms : 0.0);
   if (tracing) trace.add_step(start_us, p);
 }
 
 void print_serial_share(const StepSamples& samples) {
   std::printf(
       "serial share     %.2f %% of the step() call on one thread whatever the thread count "
-      "(input checks, plan, contact load, inertia sums, sleep, recording)\n",
+      "(plan, contact load when not beside the checks, inertia sums, sleep, recording; the input "
+      "checks when on one thread)\n",
       100.0 * median(samples.serial_share));
 }
 

@@ -121,5 +121,74 @@ TEST(ContactIdentity, SameBitsAtEveryWidthAndThreadCount) {
   EXPECT_GE(compared, 3);
 }
 
+// With the checks on two threads (4,096 manifolds or more) the first thread lays the contacts
+// out beside them, before any contact wakes an island; a contact that wakes one makes the step
+// lay them out again after the wake. The world of 4,200 resting boxes, asleep, and then a
+// contact from a pushed box that wakes its neighbour: the same bits on one thread and two.
+struct Woken {
+  std::uint64_t hash;
+  std::vector<bool> beside;  // per step from the push on: the load ran beside the checks
+  bool neighbour_awake;
+};
+
+Woken push_a_sleeping_row(int threads) {
+  WorldSettings s;
+  s.threads = threads;
+  s.fixed_threads = true;
+  s.time_to_sleep = 0.1;
+  World world(s);
+  world.set_profiling(true);
+  const BodyId ground = add_ground(world);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 4200; ++i) {
+    boxes.push_back(add_box(world, {1.5 * i, 0.5, 0.0}, 1.0, kUnitCubeHalf));
+  }
+  const auto on_ground = [&] {
+    std::vector<ContactManifold> c;
+    for (BodyId b : boxes) c.push_back(box_on_ground(world, ground, b, kUnitCubeHalf));
+    return c;
+  };
+  for (int i = 0; i < 60 && world.is_awake(boxes[1]); ++i) world.step(1.0 / 60.0, on_ground());
+  EXPECT_FALSE(world.is_awake(boxes[1]));
+  world.set_linear_velocity(boxes[0], {2.0, 0.0, 0.0});  // wakes box 0 alone
+  Woken out{0, {}, false};
+  for (int step = 0; step < 5; ++step) {
+    std::vector<ContactManifold> c = on_ground();
+    // Box 0's right face against box 1's left face: normal +x from 0 (A) to 1 (B).
+    const BodyState a = world.body(boxes[0]);
+    const BodyState b = world.body(boxes[1]);
+    ContactManifold push;
+    push.body_a = boxes[0];
+    push.body_b = boxes[1];
+    push.normal = Eigen::Vector3d::UnitX();
+    push.point_count = 4;
+    for (int k = 0; k < 4; ++k) {
+      const Eigen::Vector3d corner{0.5, (k & 1) ? 0.5 : -0.5, (k & 2) ? 0.5 : -0.5};
+      ContactPoint& p = push.points[static_cast<std::size_t>(k)];
+      p.anchor_a = corner;
+      p.anchor_b = {-0.5, corner.y(), corner.z()};
+      p.separation = (b.position.x() - 0.5) - (a.position.x() + 0.5);
+      p.feature_id = static_cast<std::uint32_t>(k);
+    }
+    c.push_back(push);
+    world.step(1.0 / 60.0, c);
+    out.beside.push_back(world.last_step_profile().contact_load_beside_checks);
+  }
+  out.hash = world.state_hash();
+  out.neighbour_awake = world.is_awake(boxes[1]);
+  return out;
+}
+
+TEST(ContactIdentity, AContactThatWakesAnIslandIsLaidOutAfterTheWake) {
+  const Woken one = push_a_sleeping_row(1);
+  const Woken two = push_a_sleeping_row(2);
+  EXPECT_TRUE(one.neighbour_awake);
+  EXPECT_EQ(two.hash, one.hash);
+  // Both ways were taken on two threads: after the wake on the step that woke box 1, beside
+  // the checks on the steps after it.
+  EXPECT_EQ(two.beside, (std::vector<bool>{false, true, true, true, true}));
+  EXPECT_EQ(one.beside, (std::vector<bool>(5, false)));
+}
+
 }  // namespace
 }  // namespace softstep::test

@@ -135,15 +135,16 @@ TEST(ContactValidation, SecondManifoldOfTheSamePairAndKey) {
   EXPECT_NO_THROW(s.world.step(1.0 / 60.0, contacts));
 }
 
-// The checks and the comparison of the keys with last step's run in one pass that stops at
-// the first broken manifold: the error must still name the first broken one in input order
-// (a repeated key included), and the warm-start index must be right whatever the order.
+// The checks and the comparison of the keys with last step's run in one pass, in chunks that
+// the step's threads take in turn (5,000 manifolds: shared from 4,096), each stopping at its
+// first broken manifold: the error must still name the first broken one in input order (a
+// repeated key included), and the warm-start index must be right whatever the order.
 struct ManyBoxes {
   static constexpr int kBoxes = 5000;
   World world;
   BodyId ground;
   std::vector<BodyId> boxes;
-  ManyBoxes() {
+  explicit ManyBoxes(const WorldSettings& settings = {}) : world(settings) {
     ground = add_ground(world);
     for (int i = 0; i < kBoxes; ++i) {
       // Masses that differ, so that each manifold's impulses are its own.
@@ -164,9 +165,17 @@ struct ManyBoxes {
   }
 };
 
-TEST(ContactValidation, ManyManifoldsNameTheFirstBrokenOne) {
-  ManyBoxes s;
+class ManyManifolds : public ::testing::TestWithParam<int> {};  // the step's threads
+
+TEST_P(ManyManifolds, NameTheFirstBrokenOne) {
+  WorldSettings settings;
+  settings.threads = GetParam();
+  settings.fixed_threads = true;
+  ManyBoxes s(settings);
+  s.world.set_profiling(true);
   s.world.step(1.0 / 60.0, s.contacts());
+  // The scan ran on the step's threads (the result below is the same either way).
+  EXPECT_EQ(s.world.last_step_profile().check_threads, GetParam());
   const std::uint64_t before = s.world.state_hash();
   const auto expect_named = [&](const std::function<void(std::vector<ContactManifold>&)>& spoil,
                                 const std::string& field, const std::string& value) {
@@ -175,6 +184,30 @@ TEST(ContactValidation, ManyManifoldsNameTheFirstBrokenOne) {
     expect_invalid_argument([&] { s.world.step(1.0 / 60.0, c); }, field, value);
     EXPECT_EQ(s.world.state_hash(), before) << field;
   };
+  // On two threads the contacts are laid out beside the checks, before any manifold is
+  // checked: an unknown body (its index past every slot) and a point count out of range must
+  // leave them laid out from nothing (ASan would see a read or write past the arrays).
+  expect_named(
+      [](auto& c) {
+        c[4000].body_b = BodyId{1'000'000, 0};
+      },
+      "contacts[4000].body_b", "BodyId{1000000");
+  expect_named([](auto& c) { c[4000].point_count = 9; }, "contacts[4000].point_count", "9");
+  expect_named([](auto& c) { c[4000].point_count = -1; }, "contacts[4000].point_count", "-1");
+  // Two broken manifolds in one chunk of the scan, and in chunks far apart (taken by
+  // different threads when there are two).
+  expect_named(
+      [](auto& c) {
+        c[1010].radius_a = -1.0;
+        c[1000].friction = -1.0;
+      },
+      "contacts[1000].friction", "-1");
+  expect_named(
+      [](auto& c) {
+        c[4999].radius_a = -1.0;
+        c[10].points[0].anchor_b.x() = kInf;
+      },
+      "contacts[10].points[0].anchor_b", "inf");
   expect_named([](auto& c) { c[4900].points[1].separation = kNaN; },
                "contacts[4900].points[1].separation", "nan");
   expect_named(
@@ -205,6 +238,24 @@ TEST(ContactValidation, ManyManifoldsNameTheFirstBrokenOne) {
       "contacts[3000].normal", "");
   // And the world steps on from its kept warm start.
   EXPECT_NO_THROW(s.world.step(1.0 / 60.0, s.contacts()));
+}
+
+std::string threads_name(const ::testing::TestParamInfo<int>& param) {
+  return std::to_string(param.param) + "Threads";
+}
+INSTANTIATE_TEST_SUITE_P(ContactValidation, ManyManifolds, ::testing::Values(1, 2), threads_name);
+
+TEST(ContactValidation, FewManifoldsAreCheckedOnTheCallersThread) {
+  WorldSettings settings;
+  settings.threads = 2;
+  settings.fixed_threads = true;
+  Scene s{World(settings), {}, {}, {}, {}};
+  s.ground = add_ground(s.world);
+  s.box = add_box(s.world, {0.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+  const ContactManifold m = box_on_ground(s.world, s.ground, s.box, kUnitCubeHalf);
+  s.world.set_profiling(true);
+  s.world.step(1.0 / 60.0, {&m, 1});
+  EXPECT_EQ(s.world.last_step_profile().check_threads, 1);
 }
 
 TEST(ContactValidation, ManifoldsThatChangeOrderAreWarmStartedFromTheirOwnImpulses) {

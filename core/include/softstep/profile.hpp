@@ -30,7 +30,8 @@ struct StageEvent {
 };
 
 struct StepProfile {
-  double step_ms = 0.0;  // wall time of the whole step
+  // The threads' team (the stages) and the contact load when it ran alone before them.
+  double step_ms = 0.0;
   std::array<double, kStageCount>
       stage_ms{};  // wall time per stage on thread 0, summed over sub-steps
   std::vector<std::vector<StageEvent>> thread_events;  // per thread, in order
@@ -40,18 +41,27 @@ struct StepProfile {
   // trials of the other count included): a count that keeps rising means two threads and
   // one run about equally fast, or another process takes a core from time to time.
   long thread_switches = 0;
-  // Of step_ms: the serial part of taking the step's contacts, before the threads start:
-  // colouring them and ordering them by colour (the caller's collision detection is outside
-  // the step). Matching them with the last step's cache and packing their lanes run on the
-  // step's threads in the prepare stage; reading their impulses back, in the store stage.
-  double contact_load_ms = 0.0;
-  // Of serial_ms: checking every field of the step's contacts and indexing their keys, before
-  // anything changes.
+  // Checking every field of the step's contacts and indexing their keys, before anything
+  // changes: on check_threads threads (the step's, when it has 4,096 manifolds or more), then
+  // the keys' index on one.
   double contact_check_ms = 0.0;
-  // Of the whole step() call, the time outside the threads' team, which one thread runs
-  // whatever the thread count: checking the input (the contacts' too), the plan, the contact
-  // load, the geometric-inertia sums, sleep bookkeeping and recording. Its share of the call bounds
-  // what a second thread can win (Amdahl).
+  int check_threads = 1;
+  // Taking the step's contacts in: colouring them and ordering them by colour, on one thread
+  // (the caller's collision detection is outside the step). With the checks on more than one
+  // thread, the second lays them out beside the checks (contact_load_beside_checks: then this
+  // is within contact_check_ms); otherwise, or when a contact woke an island, after them.
+  // Matching them with the last step's cache and packing their lanes run on the step's
+  // threads in the prepare stage; reading their impulses back, in the store stage.
+  double contact_load_ms = 0.0;
+  bool contact_load_beside_checks = false;
+  // The whole step() call, wall time, and when in it the checks and the team started.
+  double call_ms = 0.0;
+  double check_start_ms = 0.0, team_start_ms = 0.0;
+  // Of call_ms, the time one thread runs whatever the thread count, outside the threads'
+  // team and the shared contact checks: checking the input (the contacts' too when on one
+  // thread), the plan, the contact load when alone, the geometric-inertia sums, sleep
+  // bookkeeping and recording. Its share of the call bounds what a second thread can win
+  // (Amdahl).
   double serial_ms = 0.0;
 };
 

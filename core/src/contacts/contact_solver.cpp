@@ -343,7 +343,7 @@ class ContactSolverImpl final : public ContactSolver {
   ContactSolverImpl(solver::ContactKernels<W> kernels, solver::ContactKernels<1> scalar)
       : kernels_(kernels), scalar_(scalar) {}
 
-  void load(const ContactStep& step) override {
+  bool load(const ContactStep& step) override {
     const auto start = std::chrono::steady_clock::now();
     step_ = step;
     const std::span<const ContactManifold> manifolds = step.manifolds;
@@ -356,6 +356,12 @@ class ContactSolverImpl final : public ContactSolver {
     for (std::uint32_t i = 0; i < manifolds.size(); ++i) {
       const ContactManifold& m = manifolds[i];
       const std::uint32_t a = m.body_a.index, b = m.body_b.index;
+      if (a >= bodies.size() || b >= bodies.size() || m.point_count < 1 ||
+          m.point_count > kMaxContactPoints) {
+        clear_body_colors(manifolds);
+        layout_ = {};
+        return false;
+      }
       const bool moves_a = awake_dynamic(bodies[a]), moves_b = awake_dynamic(bodies[b]);
       if (!moves_a && !moves_b) {
         left_out_.push_back(i);
@@ -379,11 +385,7 @@ class ContactSolverImpl final : public ContactSolver {
       }
       unsorted_.push_back({order_key(color, signature, m.point_count), i});
     }
-    for (const Entry& e : unsorted_) {
-      const ContactManifold& m = manifolds[e.manifold];
-      body_colors_[m.body_a.index] = 0;
-      body_colors_[m.body_b.index] = 0;
-    }
+    clear_body_colors(manifolds);
     sort_entries();
     layout_.manifolds = static_cast<std::uint32_t>(entries_.size());
     layout_.colors = static_cast<std::uint32_t>(std::popcount(used_colors_));
@@ -419,6 +421,7 @@ class ContactSolverImpl final : public ContactSolver {
     layout_.load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
             .count();
+    return true;
   }
 
   const ContactLayout& layout() const override { return layout_; }
@@ -489,6 +492,15 @@ class ContactSolverImpl final : public ContactSolver {
     std::uint32_t order;  // order_key
     std::uint32_t manifold;
   };
+
+  // body_colors_ back to all zero: only the bodies of the manifolds coloured have bits.
+  void clear_body_colors(std::span<const ContactManifold> manifolds) {
+    for (const Entry& e : unsorted_) {
+      const ContactManifold& m = manifolds[e.manifold];
+      body_colors_[m.body_a.index] = 0;
+      body_colors_[m.body_b.index] = 0;
+    }
+  }
 
   void sort_entries() {
     counts_.fill(0);

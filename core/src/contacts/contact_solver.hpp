@@ -36,17 +36,21 @@ struct ContactLayout {
   std::uint32_t overflow = 0;  // manifolds solved in order on one thread
   std::uint32_t signatures = 0;  // union of the manifolds' ContactFeature bits
   bool restitution = false;      // some manifold asks for restitution
-  double load_ms = 0.0;  // the serial part of this step's load (colouring and sorting)
+  double load_ms = 0.0;          // this step's load (colouring and sorting)
 };
 
 class ContactSolver {
  public:
   virtual ~ContactSolver() = default;
-  // Serial, before the step's threads start: colours the manifolds, orders them by colour,
-  // signature and points, and lays out their groups; sizes the next cache.
-  // Manifolds whose bodies are all static or asleep are left out; their cache entries carry
-  // over. Nothing of the world is read after this but the step's manifolds and bodies.
-  virtual void load(const ContactStep& step) = 0;
+  // One thread, before the step's stages: colours the manifolds, orders them by colour,
+  // signature and points, and lays out their groups; sizes the next cache. Manifolds whose
+  // bodies are all static or asleep are left out; their cache entries carry over. Nothing of
+  // the world is read after this but the step's manifolds and bodies.
+  // It may run beside the checks, on manifolds not yet checked: it writes only its own
+  // scratch and the next cache (scratch until the step stores it), and returns false, having
+  // laid out nothing, at a manifold whose body index is out of range or whose point count is
+  // outside [1, kMaxContactPoints] (the checks then name it).
+  virtual bool load(const ContactStep& step) = 0;
   // The team's threads take the colours' groups in chunks (the overflow: each its share),
   // before prepare (a barrier between): matches each manifold with the last step's cache
   // (once: store reuses the match) and fills its lane.
