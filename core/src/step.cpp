@@ -84,8 +84,8 @@ ThreadChoice step_threads(World::Impl& w) {
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
   if (w.settings.fixed_threads) return {allowed, false};  // the user's count, not the policy's
   // Sleeping bodies and joints are no work.
-  const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3 +
-                           w.contact_solver->layout().points;
+  const std::size_t work =
+      w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3 + w.planned_contacts.points;
   if (allowed <= 1 || work < kMinWorkToShare) return {1, false};
   return {w.thread_policy.all_threads() ? allowed : 1, true};
 }

@@ -110,10 +110,11 @@ void World::Impl::build_plan() {
   // Until the next step hands its own contacts, the plan shows the last step's, as a plan that
   // is not rebuilt does: a profile that reads the plan after a step whose end put bodies to
   // sleep (which rebuilds it) saw no contacts for that step.
-  plan_contacts(contact_solver->layout());
+  plan_contacts(planned_contacts);
 }
 
 void World::Impl::plan_contacts(const ContactLayout& c) {
+  planned_contacts = c;
   StepPlan& p = plan;
   p.contact_manifolds = c.manifolds;
   p.contact_points = c.points;

@@ -253,9 +253,13 @@ struct World::Impl {
   // and go every step in a game, the rest of the content does not.
   void plan_forces(bool on);
   void clear_forces();  // after a step
-  // Sets the plan's contact fields and stages for this step's contacts, without rebuilding it.
+  // Sets the plan's contact fields and stages for this step's contacts, without rebuilding it,
+  // and keeps the layout for plans rebuilt before the next step.
   void plan_contacts(const ContactLayout& layout);
   std::vector<PlanStage> contact_stages;  // the stages plan_contacts added to the plan
+  // The last planned step's contact layout. Not the solver's: a step whose checks fail may
+  // have laid its contacts out beside them (step.cpp), and must leave the plan as it was.
+  ContactLayout planned_contacts;
 
   // Sleeping islands: the body slots of each, in slot order; emptied when woken.
   std::vector<std::vector<std::uint32_t>> islands;

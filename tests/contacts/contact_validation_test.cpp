@@ -236,6 +236,16 @@ TEST_P(ManyManifolds, NameTheFirstBrokenOne) {
         c[3000].normal.y() = 2.0;
       },
       "contacts[3000].normal", "");
+  // The contacts laid out beside the checks of a step that failed are not the plan's: a plan
+  // rebuilt after it (a new body) still shows the last good step's.
+  {
+    std::vector<ContactManifold> c = s.contacts();
+    c.resize(4500);
+    c[4400].friction = -1.0;
+    expect_invalid_argument([&] { s.world.step(1.0 / 60.0, c); }, "contacts[4400].friction", "-1");
+    add_box(s.world, {-5.0, 0.5, 0.0}, 1.0, kUnitCubeHalf);
+    EXPECT_EQ(s.world.step_plan().contact_manifolds, 5000u);
+  }
   // And the world steps on from its kept warm start.
   EXPECT_NO_THROW(s.world.step(1.0 / 60.0, s.contacts()));
 }
