@@ -7,6 +7,7 @@
 #include <atomic>
 #include <thread>
 
+#include "contacts/analytic_contacts.hpp"
 #include "scenes/chain_scene.hpp"
 
 namespace softstep {
@@ -81,6 +82,53 @@ TEST(Threads, HostTaskCallbacksGiveTheSameWorldAsOpenMPAndOneThread) {
   EXPECT_EQ(openmp.steps_on_two_threads, 40);
   EXPECT_EQ(hosted.steps_on_two_threads, 40);
   EXPECT_EQ(host.enqueued.load(), 40);
+}
+
+// 4,200 boxes on the ground, each with its manifold: from 4,096 manifolds a step checks them
+// on its threads (the second laying them out beside the checks) before it runs the stages, so
+// it enqueues its worker twice.
+struct BoxesRun {
+  std::uint64_t hash;
+  int checked_on_two, laid_out_beside;
+};
+
+BoxesRun run_boxes(int threads, ThreadPerTask* host) {
+  WorldSettings s;
+  s.threads = threads;
+  s.fixed_threads = true;
+  World world(s);
+  if (host != nullptr) world.set_task_callbacks(host->callbacks());
+  world.set_profiling(true);
+  const BodyId ground = test::add_ground(world);
+  std::vector<BodyId> boxes;
+  for (int i = 0; i < 4200; ++i) {
+    boxes.push_back(test::add_box(world, {1.5 * i, 0.5 + 0.01 * (i % 5), 0.0}, 1.0 + i % 3,
+                                  test::kUnitCubeHalf));
+  }
+  BoxesRun r{0, 0, 0};
+  for (int step = 0; step < 5; ++step) {
+    std::vector<ContactManifold> c;
+    for (BodyId b : boxes) c.push_back(test::box_on_ground(world, ground, b, test::kUnitCubeHalf));
+    world.step(1.0 / 60.0, c);
+    r.checked_on_two += world.last_step_profile().check_threads == 2 ? 1 : 0;
+    r.laid_out_beside += world.last_step_profile().contact_load_beside_checks ? 1 : 0;
+  }
+  r.hash = world.state_hash();
+  return r;
+}
+
+TEST(Threads, HostTasksCheckManyContactsAsOpenMPDoes) {
+  const BoxesRun one = run_boxes(1, nullptr);
+  const BoxesRun openmp = run_boxes(2, nullptr);
+  ThreadPerTask host;
+  const BoxesRun hosted = run_boxes(2, &host);
+  EXPECT_EQ(openmp.hash, one.hash);
+  EXPECT_EQ(hosted.hash, one.hash);
+  EXPECT_EQ(one.checked_on_two, 0);
+  EXPECT_EQ(openmp.checked_on_two, 5);
+  EXPECT_EQ(hosted.checked_on_two, 5);
+  EXPECT_EQ(hosted.laid_out_beside, 5);
+  EXPECT_EQ(host.enqueued.load(), 10);  // the checks' worker and the stages' worker, per step
 }
 
 TEST(Threads, AdaptivePolicyDecidesUnlessTheCountIsFixed) {
