@@ -28,6 +28,17 @@ struct ThreadPerTask {
   TaskCallbacks callbacks() { return {&enqueue, &finish, this}; }
 };
 
+// A world on `threads` threads (fixed or the policy's), through the host's tasks when given.
+World profiled_world(int threads, bool fixed, ThreadPerTask* host) {
+  WorldSettings s;
+  s.threads = threads;
+  s.fixed_threads = fixed;
+  World world(s);
+  if (host != nullptr) world.set_task_callbacks(host->callbacks());
+  world.set_profiling(true);
+  return world;
+}
+
 struct ChainRun {
   std::uint64_t hash;
   int steps_on_two_threads;
@@ -36,12 +47,7 @@ struct ChainRun {
 // A soft chain of distance joints with limit rows and a hub whose joints overflow the colours:
 // every stage's threaded path.
 ChainRun run_chain(int threads, bool fixed, ThreadPerTask* host) {
-  WorldSettings s;
-  s.threads = threads;
-  s.fixed_threads = fixed;
-  World world(s);
-  if (host != nullptr) world.set_task_callbacks(host->callbacks());
-  world.set_profiling(true);
+  World world = profiled_world(threads, fixed, host);
   scenes::ChainOptions o;
   o.links = 600;
   o.joint = scenes::ChainJoint::Distance;
@@ -93,12 +99,7 @@ struct BoxesRun {
 };
 
 BoxesRun run_boxes(int threads, ThreadPerTask* host) {
-  WorldSettings s;
-  s.threads = threads;
-  s.fixed_threads = true;
-  World world(s);
-  if (host != nullptr) world.set_task_callbacks(host->callbacks());
-  world.set_profiling(true);
+  World world = profiled_world(threads, true, host);
   const BodyId ground = test::add_ground(world);
   std::vector<BodyId> boxes;
   for (int i = 0; i < 4200; ++i) {
