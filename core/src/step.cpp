@@ -627,7 +627,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     p.barrier_wait_ms.clear();
     for (double us : waits) p.barrier_wait_ms.push_back(us * 1e-3);
   }
-  std::swap(w.contact_cache, w.contact_cache_next);
+  w.contact_cache_next.become_current(w.contact_cache);
   w.contact_readings_pending = true;
   w.last_substep = h;
   w.joints_without_history = false;

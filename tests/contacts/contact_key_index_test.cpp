@@ -87,7 +87,7 @@ ContactManifold manifold(std::uint32_t a, std::uint32_t b, std::uint64_t key) {
   return m;
 }
 
-TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
+TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherTakenOverOrRebuilt) {
   // The pair is unordered: (1, 2) and (2, 1) with the same key are the same manifold.
   const std::vector<ContactManifold> step = {manifold(1, 2, 0), manifold(3, 4, 0),
                                              manifold(2, 1, 1), manifold(2, 1, 0)};
@@ -106,8 +106,9 @@ TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
     next.slot_entry(slot_of(i)).key = contact_pair_key(unique[i]);
     next.slot_entry(slot_of(i)).manifold.point_count = static_cast<std::uint16_t>(i + 1);
   }
-  // The same manifolds in the same order: the index is copied; in another order: rebuilt.
-  // Either way every key finds its manifold's position, without a hint and with a wrong one.
+  // The same manifolds in the same order: the index is taken over from the cache it replaces
+  // (become_current); in another order: rebuilt. Either way every key finds its manifold's
+  // position, without a hint and with a wrong one.
   ContactCache copied, rebuilt;
   EXPECT_EQ(copied.index_step(unique, next), ContactCache::kNoRepeat);
   const std::vector<ContactManifold> reordered = {unique[2], unique[0], unique[1]};
@@ -123,6 +124,9 @@ TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
     rebuilt.place(i, static_cast<std::uint32_t>(i));
     rebuilt.slot_entry(i).key = contact_pair_key(reordered[i]);
   }
+  ContactCache current = next;  // as the world's cache, which becomes the scratch
+  copied.become_current(current);
+  EXPECT_EQ(copied.size(), next.size()) << "the scratch: what was current";
   for (std::size_t i = 0; i < unique.size(); ++i) {
     const ContactPairKey k = contact_pair_key(unique[i]);
     ASSERT_NE(next.find(k), nullptr);
@@ -133,7 +137,9 @@ TEST(ContactCache, StepIndexFindsTheFirstRepeatWhetherCopiedOrRebuilt) {
     EXPECT_EQ(&next.at_position(i), next.find(k));
     EXPECT_TRUE(next.same_key_at(i, unique[i]));
     EXPECT_FALSE(next.same_key_at(i, unique[(i + 1) % unique.size()]));
-    EXPECT_EQ(copied.find(k), &copied.entries()[i]);
+    EXPECT_EQ(current.find(k), &current.entries()[i]);
+    EXPECT_EQ(current.find(k, (i + 1) % unique.size()), &current.entries()[i]) << "the index";
+    EXPECT_TRUE(current.same_key_at(i, unique[i]));
     ASSERT_NE(rebuilt.find(k), nullptr);
     EXPECT_EQ(rebuilt.find(k)->key, k);
   }

@@ -108,9 +108,14 @@ class ContactCache {
   std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous);
   // The same when the caller has found out, as it checked the manifolds, whether their keys
   // are the previous step's at the same positions (`unchanged`: same_key_at for every
-  // manifold and the same count; false when unsure).
-  std::size_t index_step(std::span<const ContactManifold> manifolds, const ContactCache& previous,
-                         bool unchanged);
+  // manifold and the same count; false when unsure). Unchanged keys are not copied: this
+  // cache takes the previous one's index and keys over in become_current (until then its own
+  // are stale), so `current` there must be the `previous` here.
+  std::size_t index_step(std::span<const ContactManifold> manifolds, bool unchanged);
+  // Makes this cache, the step's next one, `current`, and `current` this (scratch for the
+  // next step): a swap, in which this takes over current's index and keys when index_step found
+  // them unchanged.
+  void become_current(ContactCache& current);
   bool same_key_at(std::size_t position, const ContactManifold& m) const {
     return position < keys_.size() && keys_[position] == contact_pair_key(m);
   }
@@ -132,6 +137,7 @@ class ContactCache {
   PagedVector<ContactPairKey> keys_;        // in input order
   std::vector<std::uint32_t> slot_of_;      // input position -> its entry in entries_
   ContactKeyIndex index_;                   // key -> input position
+  bool index_is_previous_ = false;          // index_step found the keys unchanged
 };
 
 // The readings of the step that wrote this cache, its manifolds in input order, into

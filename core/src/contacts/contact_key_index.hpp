@@ -48,6 +48,10 @@ class ContactKeyIndex {
   }
 
   std::size_t size() const { return count_; }
+  void swap(ContactKeyIndex& other) noexcept {
+    slots_.swap(other.slots_);
+    std::swap(count_, other.count_);
+  }
 
   // The value held for the key, or kAbsent.
   std::uint32_t find(const ContactPairKey& key) const {

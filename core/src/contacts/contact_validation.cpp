@@ -165,7 +165,7 @@ void ContactChecks::finish(std::string_view call, ContactCache& next) const {
   // keys are indexed whole (unchanged_ is false), and the index it leaves is scratch.
   const std::size_t failure = failure_.load(std::memory_order_relaxed);
   const std::size_t repeat =
-      next.index_step(manifolds_, world_.contact_cache, unchanged_.load(std::memory_order_relaxed));
+      next.index_step(manifolds_, unchanged_.load(std::memory_order_relaxed));
   if (failure != kNone && failure <= repeat) {
     describe_failure(call, world_, manifolds_[failure], failure);
   }
