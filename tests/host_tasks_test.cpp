@@ -91,11 +91,12 @@ TEST(Threads, HostTaskCallbacksGiveTheSameWorldAsOpenMPAndOneThread) {
 }
 
 // 4,200 boxes on the ground, each with its manifold: from 4,096 manifolds a step checks them
-// on its threads (the second laying them out beside the checks) before it runs the stages, so
-// it enqueues its worker twice.
+// on its threads before it runs the stages, so it enqueues its worker twice. The second
+// thread lays them out beside the checks on the first two steps; from the third, the layout
+// inputs holding, every thread checks and compares them, and the layout is kept.
 struct BoxesRun {
   std::uint64_t hash;
-  int checked_on_two, laid_out_beside;
+  int checked_on_two, laid_out_beside, kept;
 };
 
 BoxesRun run_boxes(int threads, ThreadPerTask* host) {
@@ -106,13 +107,14 @@ BoxesRun run_boxes(int threads, ThreadPerTask* host) {
     boxes.push_back(test::add_box(world, {1.5 * i, 0.5 + 0.01 * (i % 5), 0.0}, 1.0 + i % 3,
                                   test::kUnitCubeHalf));
   }
-  BoxesRun r{0, 0, 0};
+  BoxesRun r{0, 0, 0, 0};
   for (int step = 0; step < 5; ++step) {
     std::vector<ContactManifold> c;
     for (BodyId b : boxes) c.push_back(test::box_on_ground(world, ground, b, test::kUnitCubeHalf));
     world.step(1.0 / 60.0, c);
     r.checked_on_two += world.last_step_profile().check_threads == 2 ? 1 : 0;
     r.laid_out_beside += world.last_step_profile().contact_load_beside_checks ? 1 : 0;
+    r.kept += world.last_step_profile().contact_layout_kept ? 1 : 0;
   }
   r.hash = world.state_hash();
   return r;
@@ -128,7 +130,11 @@ TEST(Threads, HostTasksCheckManyContactsAsOpenMPDoes) {
   EXPECT_EQ(one.checked_on_two, 0);
   EXPECT_EQ(openmp.checked_on_two, 5);
   EXPECT_EQ(hosted.checked_on_two, 5);
-  EXPECT_EQ(hosted.laid_out_beside, 5);
+  EXPECT_EQ(openmp.laid_out_beside, 2);
+  EXPECT_EQ(hosted.laid_out_beside, 2);
+  EXPECT_EQ(openmp.kept, 3);
+  EXPECT_EQ(hosted.kept, 3);
+  EXPECT_EQ(one.kept, 4);
   EXPECT_EQ(host.enqueued.load(), 10);  // the checks' worker and the stages' worker, per step
 }
 

@@ -38,6 +38,7 @@ void ContactSamples::add_step(const World& world, ContactRows step_rows) {
   check_ms.push_back(world.last_step_profile().contact_check_ms);
   check_threads = world.last_step_profile().check_threads;
   load_beside_checks = world.last_step_profile().contact_load_beside_checks;
+  layout_kept += world.last_step_profile().contact_layout_kept ? 1 : 0;
   const auto start = std::chrono::steady_clock::now();
   (void)world.contact_readings();
   readings_ms.push_back(
@@ -92,15 +93,17 @@ void print_contact_stage_lines(const ContactSamples& s, double step_ms) {
   // The contacts run inside the prepare, warm start, solve, relax and restitution stages;
   // their lanes are filled (matched with the last step's cache) in prepare by every thread,
   // and read back into the readings and the next cache in store. The load (the colouring and
-  // the order) runs on one thread: beside the checks when they are shared, else after them.
+  // the order) runs on one thread: beside the checks when they are shared, else after them;
+  // a step whose contacts ask for what last step's did keeps last step's layout.
   if (s.steps > 0) {
     const double load = median(s.load_ms);
     std::printf(
         "  %-22s %8.3f  %5.1f %%  (softstep: colouring and ordering, one thread; %s; "
-        "matching and packing are in prepare, reading back in store)\n",
+        "last step's kept in %ld of %ld steps; matching and packing are in prepare, reading "
+        "back in store)\n",
         "contact load", load, step_ms > 0 ? 100.0 * load / step_ms : 0.0,
-        s.load_beside_checks ? "beside the checks, within their time"
-                             : "serial, before the stages");
+        s.load_beside_checks ? "beside the checks, within their time" : "serial, before the stages",
+        s.layout_kept, s.steps);
   }
   if (s.steps > 0) {
     const double check = median(s.check_ms);
@@ -139,6 +142,7 @@ nlohmann::json contacts_json(const ContactSamples& s, const StepPlan& plan,
           {"median_load_ms", median(s.load_ms)},
           {"check_threads", s.check_threads},
           {"load_beside_checks", s.load_beside_checks},
+          {"layout_kept_steps", s.layout_kept},
           {"median_check_ms", median(s.check_ms)},
           {"median_readings_ms", median(s.readings_ms)},
           {"median_collision_ms", s.collision_ms.empty() ? kNaN : median(s.collision_ms)}};

@@ -31,6 +31,7 @@ struct ContactSamples {
   std::vector<double> manifolds, points, rows, friction_rows, load_ms, check_ms;
   int check_threads = 1;            // the last step's (StepProfile::check_threads)
   bool load_beside_checks = false;  // the last step's (StepProfile::contact_load_beside_checks)
+  long layout_kept = 0;             // steps that kept the last layout (contact_layout_kept)
   // Per step: the scene's own narrow phase before it (empty when the scene has none).
   std::vector<double> collision_ms;
   // Per such step: World::contact_readings() asked right after it (the step leaves the

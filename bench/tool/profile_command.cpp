@@ -185,12 +185,13 @@ int profile_command(ProfileOptions o) {
         if (samples.tracing) {
           const double checks_us = call_start_us + profile.check_start_ms * 1e3;
           samples.trace.add_slice("contact_checks", 0, checks_us, profile.contact_check_ms * 1e3);
-          // Beside the checks, on their first thread; otherwise just before the stages.
+          // Beside the checks, on their second thread; otherwise just before the stages.
+          const bool beside = profile.contact_load_beside_checks;
           const double load_us =
-              profile.contact_load_beside_checks
-                  ? checks_us
-                  : call_start_us + (profile.team_start_ms - profile.contact_load_ms) * 1e3;
-          samples.trace.add_slice("contact_load", 0, load_us, profile.contact_load_ms * 1e3);
+              beside ? checks_us
+                     : call_start_us + (profile.team_start_ms - profile.contact_load_ms) * 1e3;
+          samples.trace.add_slice("contact_load", beside ? 1 : 0, load_us,
+                                  profile.contact_load_ms * 1e3);
         }
       }
       // The stages count from the threads' start.

@@ -104,6 +104,7 @@ void World::Impl::unpack_joints() {
 
 void World::Impl::content_changed() {
   bodies_listed = false;
+  ++bodies_version;
   plan_built = false;
 }
 

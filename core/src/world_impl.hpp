@@ -221,6 +221,8 @@ struct World::Impl {
   }
   bool joints_packed = false;  // false after any joint change: re-pack before the next step
   bool bodies_listed = false;  // false after any body change: rebuild the movable list
+  // Counts content_changed(): the contact solver keeps its layout only while it stays.
+  std::uint64_t bodies_version = 0;
   SolverBodies solver_bodies;
   std::vector<double> extra_inertia;  // per body slot, from geometric_inertia (awake entries)
   // Per body slot, 1 for a dynamic body, listed with the bodies (list_bodies: a body's type is

@@ -128,6 +128,7 @@ TEST(ContactIdentity, SameBitsAtEveryWidthAndThreadCount) {
 struct Woken {
   std::uint64_t hash;
   std::vector<bool> beside;  // per step from the push on: the load ran beside the checks
+  std::vector<bool> kept;    // and kept the last step's layout
   bool neighbour_awake;
 };
 
@@ -151,7 +152,7 @@ Woken push_a_sleeping_row(int threads) {
   for (int i = 0; i < 60 && world.is_awake(boxes[1]); ++i) world.step(1.0 / 60.0, on_ground());
   EXPECT_FALSE(world.is_awake(boxes[1]));
   world.set_linear_velocity(boxes[0], {2.0, 0.0, 0.0});  // wakes box 0 alone
-  Woken out{0, {}, false};
+  Woken out{0, {}, {}, false};
   for (int step = 0; step < 5; ++step) {
     std::vector<ContactManifold> c = on_ground();
     // Box 0's right face against box 1's left face: normal +x from 0 (A) to 1 (B).
@@ -173,6 +174,7 @@ Woken push_a_sleeping_row(int threads) {
     c.push_back(push);
     world.step(1.0 / 60.0, c);
     out.beside.push_back(world.last_step_profile().contact_load_beside_checks);
+    out.kept.push_back(world.last_step_profile().contact_layout_kept);
   }
   out.hash = world.state_hash();
   out.neighbour_awake = world.is_awake(boxes[1]);
@@ -184,10 +186,13 @@ TEST(ContactIdentity, AContactThatWakesAnIslandIsLaidOutAfterTheWake) {
   const Woken two = push_a_sleeping_row(2);
   EXPECT_TRUE(one.neighbour_awake);
   EXPECT_EQ(two.hash, one.hash);
-  // Both ways were taken on two threads: after the wake on the step that woke box 1, beside
-  // the checks on the steps after it.
-  EXPECT_EQ(two.beside, (std::vector<bool>{false, true, true, true, true}));
+  // Every way was taken on two threads: after the wake on the step that woke box 1, beside
+  // the checks on the step after it (which found the contacts asking for what they asked for
+  // after the wake), then kept on the steps after that. One thread keeps it a step sooner.
+  EXPECT_EQ(two.beside, (std::vector<bool>{false, true, false, false, false}));
+  EXPECT_EQ(two.kept, (std::vector<bool>{false, false, true, true, true}));
   EXPECT_EQ(one.beside, (std::vector<bool>(5, false)));
+  EXPECT_EQ(one.kept, (std::vector<bool>{false, true, true, true, true}));
 }
 
 }  // namespace

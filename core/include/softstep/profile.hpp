@@ -54,6 +54,11 @@ struct StepProfile {
   // threads in the prepare stage; reading their impulses back, in the store stage.
   double contact_load_ms = 0.0;
   bool contact_load_beside_checks = false;
+  // The load kept the last step's layout: every manifold asked for what it asked for then
+  // (bodies, point count; friction, rolling resistance and restitution on or off) and no body
+  // was created, destroyed, put to sleep or woken since. The checks compared them as they read
+  // them; the load then only placed them in the next warm-start cache.
+  bool contact_layout_kept = false;
   // The whole step() call, wall time, and when in it the checks and the team started.
   double call_ms = 0.0;
   double check_start_ms = 0.0, team_start_ms = 0.0;

@@ -26,7 +26,23 @@ struct ContactStep {
   const ContactCache* previous = nullptr;  // the last step's warm-start cache
   ContactCache* next = nullptr;  // indexed by the step's validation (ContactCache::index_step)
   bool warm_start = true;
+  // Changes whenever a body's slot, type or sleep changes (World::Impl::bodies_version).
+  std::uint64_t bodies_version = 0;
 };
+
+// What the layout reads of a manifold besides its bodies' states (awake, dynamic): its
+// bodies' slots, its point count and which rows and passes it asks for. The checks compare
+// it with the last layout's as they read each manifold (contact_validation.hpp).
+struct ContactLayoutInput {
+  std::uint32_t body_a, body_b, shape;
+  bool operator==(const ContactLayoutInput&) const = default;
+};
+inline ContactLayoutInput contact_layout_input(const ContactManifold& m) {
+  const auto flag = [](bool on, int bit) { return static_cast<std::uint32_t>(on) << bit; };
+  return {m.body_a.index, m.body_b.index,
+          static_cast<std::uint32_t>(m.point_count) | flag(m.friction > 0.0, 8) |
+              flag(m.rolling_resistance > 0.0, 9) | flag(m.restitution > 0.0, 10)};
+}
 
 // How the step's contacts were laid out (for the plan and the profile).
 struct ContactLayout {
@@ -37,6 +53,8 @@ struct ContactLayout {
   std::uint32_t signatures = 0;  // union of the manifolds' ContactFeature bits
   bool restitution = false;      // some manifold asks for restitution
   double load_ms = 0.0;          // this step's load (colouring and sorting)
+  bool same_inputs = false;      // the layout before this one had the same inputs
+  bool kept = false;             // and this load kept it without colouring again
 };
 
 class ContactSolver {
@@ -50,7 +68,14 @@ class ContactSolver {
   // scratch and the next cache (scratch until the step stores it), and returns false, having
   // laid out nothing, at a manifold whose body index is out of range or whose point count is
   // outside [1, kMaxContactPoints] (the checks then name it).
-  virtual bool load(const ContactStep& step) = 0;
+  // same_inputs: the caller found every manifold's contact_layout_input equal to
+  // layout_inputs()'s; then, unless a body changed since (step.bodies_version), it keeps the
+  // last layout (layout().kept), which is what colouring them again would give.
+  virtual bool load(const ContactStep& step, bool same_inputs = false) = 0;
+  // The inputs of the last layout, one per manifold in its input order, while they are this
+  // step's candidates: no body changed since and the step has as many manifolds; else null.
+  virtual const ContactLayoutInput* layout_inputs(std::uint64_t bodies_version,
+                                                  std::size_t manifolds) const = 0;
   // The team's threads take the colours' groups in chunks (the overflow: each its share),
   // before prepare (a barrier between): matches each manifold with the last step's cache
   // (once: store reuses the match) and fills its lane.

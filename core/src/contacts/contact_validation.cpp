@@ -120,10 +120,13 @@ bool passes(const World::Impl& w, const ContactManifold& m) {
 
 }  // namespace
 
-ContactChecks::ContactChecks(const World::Impl& world, std::span<const ContactManifold> manifolds)
+ContactChecks::ContactChecks(const World::Impl& world, std::span<const ContactManifold> manifolds,
+                             const ContactLayoutInput* last_layout)
     : world_(world),
       manifolds_(manifolds),
-      unchanged_(manifolds.size() == world.contact_cache.size()) {}
+      unchanged_(manifolds.size() == world.contact_cache.size()),
+      last_layout_(last_layout),
+      same_layout_(last_layout != nullptr) {}
 
 void ContactChecks::scan() {
   // One pass over the manifolds checks the rules and whether the keys are last step's at the
@@ -137,6 +140,7 @@ void ContactChecks::scan() {
     if (begin >= manifolds_.size()) return;
     const std::size_t end = std::min(manifolds_.size(), begin + kChunk);
     bool same = unchanged_.load(std::memory_order_relaxed);
+    bool same_layout = same_layout_.load(std::memory_order_relaxed);
     for (std::size_t i = begin; i < end; ++i) {
       const ContactManifold& m = manifolds_[i];
       constexpr std::size_t kAhead = 8;  // manifolds
@@ -145,9 +149,12 @@ void ContactChecks::scan() {
         previous.prefetch_key(i + kAhead);
         same = previous.same_key_at(i, m);
       }
+      // Read while the checks have the manifold's lines: the pass the layout would make.
+      if (same_layout) same_layout = contact_layout_input(m) == last_layout_[i];
       if (!passes(world_, m)) {
         // The keys after it in this chunk were not compared: unsure, so finish indexes them.
         same = false;
+        same_layout = false;
         std::size_t first = failure_.load(std::memory_order_relaxed);
         while (i < first && !failure_.compare_exchange_weak(first, i, std::memory_order_relaxed)) {
         }
@@ -155,6 +162,7 @@ void ContactChecks::scan() {
       }
     }
     if (!same) unchanged_.store(false, std::memory_order_relaxed);
+    if (!same_layout) same_layout_.store(false, std::memory_order_relaxed);
   }
 }
 
