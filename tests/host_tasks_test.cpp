@@ -3,6 +3,7 @@
 // thread count (WorldSettings::fixed_threads) is what every step uses. Named Threads.* so the
 // ThreadSanitizer job runs them.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <atomic>
 #include <thread>
@@ -97,9 +98,13 @@ TEST(Threads, HostTaskCallbacksGiveTheSameWorldAsOpenMPAndOneThread) {
 struct BoxesRun {
   std::uint64_t hash;
   int checked_on_two, laid_out_beside, kept;
+  int ran_on_two = 0;  // steps whose stages ran on two threads
 };
 
-BoxesRun run_boxes(int threads, ThreadPerTask* host) {
+// inside_region: each step is called from one thread of an OpenMP parallel region of two, as
+// a host that steps worlds in its own parallel loop would; the caller has left nesting off, so
+// the step's team comes out as one thread.
+BoxesRun run_boxes(int threads, ThreadPerTask* host, bool inside_region = false) {
   World world = profiled_world(threads, true, host);
   const BodyId ground = test::add_ground(world);
   std::vector<BodyId> boxes;
@@ -107,14 +112,21 @@ BoxesRun run_boxes(int threads, ThreadPerTask* host) {
     boxes.push_back(test::add_box(world, {1.5 * i, 0.5 + 0.01 * (i % 5), 0.0}, 1.0 + i % 3,
                                   test::kUnitCubeHalf));
   }
-  BoxesRun r{0, 0, 0, 0};
+  BoxesRun r{};
   for (int step = 0; step < 5; ++step) {
     std::vector<ContactManifold> c;
     for (BodyId b : boxes) c.push_back(test::box_on_ground(world, ground, b, test::kUnitCubeHalf));
-    world.step(1.0 / 60.0, c);
+    if (inside_region) {
+#pragma omp parallel num_threads(2)
+#pragma omp single
+      world.step(1.0 / 60.0, c);
+    } else {
+      world.step(1.0 / 60.0, c);
+    }
     r.checked_on_two += world.last_step_profile().check_threads == 2 ? 1 : 0;
     r.laid_out_beside += world.last_step_profile().contact_load_beside_checks ? 1 : 0;
     r.kept += world.last_step_profile().contact_layout_kept ? 1 : 0;
+    r.ran_on_two += world.last_step_profile().threads == 2 ? 1 : 0;
   }
   r.hash = world.state_hash();
   return r;
@@ -135,7 +147,24 @@ TEST(Threads, HostTasksCheckManyContactsAsOpenMPDoes) {
   EXPECT_EQ(openmp.kept, 3);
   EXPECT_EQ(hosted.kept, 3);
   EXPECT_EQ(one.kept, 4);
+  EXPECT_EQ(openmp.ran_on_two, 5);
+  EXPECT_EQ(hosted.ran_on_two, 5);
   EXPECT_EQ(host.enqueued.load(), 10);  // the checks' worker and the stages' worker, per step
+}
+
+// The profile counts the threads that ran a step, not those asked for: inside a parallel
+// region with nesting off, OpenMP gives the step a team of one, and the checks and the stages
+// say so, and the result is the one thread's.
+TEST(Threads, AStepGivenFewerThreadsThanAskedReportsThoseItRanOn) {
+  const BoxesRun one = run_boxes(1, nullptr);
+  const int levels = omp_get_max_active_levels();
+  omp_set_max_active_levels(1);
+  const BoxesRun nested = run_boxes(2, nullptr, true);
+  omp_set_max_active_levels(levels);
+  EXPECT_EQ(nested.hash, one.hash);
+  EXPECT_EQ(nested.checked_on_two, 0);
+  EXPECT_EQ(nested.laid_out_beside, 0);
+  EXPECT_EQ(nested.ran_on_two, 0);
 }
 
 TEST(Threads, AdaptivePolicyDecidesUnlessTheCountIsFixed) {

@@ -6,14 +6,15 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <optional>
 #include <vector>
 
 #include "contacts/contact_validation.hpp"
+#include "elapsed_ms.hpp"
 #include "recording/recorder.hpp"
 #include "solver/team.hpp"
 #include "validation.hpp"
@@ -114,24 +115,32 @@ void run_on_host_tasks(const TaskCallbacks& tasks, int threads, Run& run) {
 }
 
 // Runs run(share) on `threads` threads: the caller alone, the host's job system when it gave
-// one (set_task_callbacks), or an OpenMP team.
+// one (set_task_callbacks), or an OpenMP team. Returns how many ran it: an OpenMP team may come
+// out smaller than asked (OMP_THREAD_LIMIT, a step called inside a parallel region), and the
+// profile reports the threads that worked, not the count asked for.
 template <class Run>
-void run_team(const World::Impl& w, int threads, Run& run) {
+int run_team(const World::Impl& w, int threads, Run& run) {
   if (threads == 1) {
     run(solver::Share{});
-  } else if (w.tasks.enqueue != nullptr) {
-    run_on_host_tasks(w.tasks, threads, run);
-  } else {
-    // The team may come out smaller than asked (OMP_THREAD_LIMIT, nested regions): the
-    // barrier is sized by the first thread to know, before anyone uses it.
-    std::optional<solver::StepBarrier> barrier;
-#pragma omp parallel num_threads(threads)
-    {
-#pragma omp single
-      barrier.emplace(omp_get_num_threads());
-      run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr, &*barrier});
-    }
+    return 1;
   }
+  if (w.tasks.enqueue != nullptr) {
+    run_on_host_tasks(w.tasks, threads, run);
+    return threads;
+  }
+  // The barrier is sized by the first thread to know the team's size, before anyone uses it.
+  std::optional<solver::StepBarrier> barrier;
+  int team = 1;
+#pragma omp parallel num_threads(threads)
+  {
+#pragma omp single
+    {
+      team = omp_get_num_threads();
+      barrier.emplace(team);
+    }
+    run(solver::Share{omp_get_thread_num(), omp_get_num_threads(), nullptr, &*barrier});
+  }
+  return team;
 }
 
 // Below this many manifolds the checks' scan stays on the caller: 4,096 take about 0.12 ms on
@@ -393,6 +402,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   const bool lay_out_beside = check_threads > 1 && !expect_same_layout;
   std::atomic<bool> laid_out_beside{false};
   bool same_layout_inputs = false;
+  int check_team = 1;
   {
     // The layout beside the checks rewrites the inputs they would compare with.
     validation::ContactChecks checks(w, contacts, lay_out_beside ? nullptr : last_layout);
@@ -402,7 +412,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       checks.scan();
     };
-    run_team(w, check_threads, check);
+    check_team = run_team(w, check_threads, check);
     checks.finish("step", w.contact_cache_next);
     same_layout_inputs = checks.same_layout_inputs();
   }
@@ -624,7 +634,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     events.assign(static_cast<std::size_t>(threads), {});
     waits.assign(static_cast<std::size_t>(threads), 0.0);
   }
-  run_team(w, threads, run);
+  const int team = run_team(w, threads, run);
   const double team_ms = since_start() * 1e-3;
   if (choice.by_policy) w.thread_policy.record(team_ms, fresh_content);
   if (profiling) {
@@ -632,13 +642,13 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     p.step_ms = team_ms + (load_alone ? contact_solver.layout().load_ms : 0.0);
     p.contact_load_beside_checks = !load_alone;
     p.contact_layout_kept = contact_solver.layout().kept;
-    p.threads = threads;
+    p.threads = team;
     p.thread_switches = w.thread_policy.switches();
     p.contact_load_ms = contact_solver.layout().load_ms;
-    p.contact_check_ms = std::chrono::duration<double, std::milli>(checked - check_start).count();
-    p.check_start_ms = std::chrono::duration<double, std::milli>(check_start - call_start).count();
-    p.team_start_ms = std::chrono::duration<double, std::milli>(step_start - call_start).count();
-    p.check_threads = check_threads;
+    p.contact_check_ms = ms_between(check_start, checked);
+    p.check_start_ms = ms_between(call_start, check_start);
+    p.team_start_ms = ms_between(call_start, step_start);
+    p.check_threads = check_team;
     p.stage_ms.fill(0.0);
     for (const StageEvent& e : events[0])
       p.stage_ms[static_cast<std::size_t>(e.stage)] += (e.end_us - e.start_us) * 1e-3;
@@ -654,11 +664,9 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   w.update_sleep(some_ready.load(std::memory_order_relaxed));
   if (w.recorder) w.recorder->step(dt, contacts, motion_hash());
   if (profiling) {
-    const double call_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - call_start)
-            .count();
+    const double call_ms = ms_since(call_start);
     w.profile.call_ms = call_ms;
-    const double shared_checks_ms = check_threads > 1 ? w.profile.contact_check_ms : 0.0;
+    const double shared_checks_ms = check_team > 1 ? w.profile.contact_check_ms : 0.0;
     w.profile.serial_ms = std::max(0.0, call_ms - team_ms - shared_checks_ms);
   }
 }

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "contacts/contact_kernels.hpp"
+#include "elapsed_ms.hpp"
 #include "prefetch.hpp"
 #include "solver/four_doubles.hpp"
 #include "solver/team.hpp"
@@ -520,11 +521,6 @@ class ContactSolverImpl final : public ContactSolver {
     for (std::size_t k = 0; k < left_out_.size(); ++k) {
       step.next->place(left_out_[k], static_cast<std::uint32_t>(entries_.size() + k));
     }
-  }
-
-  static double ms_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
   }
 
   // body_colors_ back to all zero: only the bodies of the manifolds coloured have bits.
