@@ -328,42 +328,53 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       // sub-steps; 2.6e-4 m bounding only what was there before).
       // Sizes, not rows: a violation held back turns with the bodies, and compared row by row
       // its turned part would pass for new.
-      const double size = violation_size(j, separation);
       double& held = island.held_back[k];
-      held = std::min(held, size);  // the motion since may have closed some of it
-      const double allowed = size - held + step;
-      island.error[k] = size > allowed ? Eigen::Vector3d(c * (allowed / size)) : c;
-      island.kept[k] = c - island.error[k];
-      held = std::max(held - step, 0.0);
+      if (held > 0.0) {
+        const double size = violation_size(j, separation);
+        held = std::min(held, size);  // the motion since may have closed some of it
+        const double allowed = size - held + step;
+        island.error[k] = size > allowed ? Eigen::Vector3d(c * (allowed / size)) : c;
+        island.kept[k] = c - island.error[k];
+        held = std::max(held - step, 0.0);
+      } else {
+        // Nothing held back (a joint whose step-start violation was under the bound, from the
+        // step's second sub-step on): all of C goes, as the branch above gives for held = 0,
+        // without its square root per joint (7 % of the exact pass's own samples on 100
+        // chains of 1,000 links).
+        island.error[k] = c;
+        island.kept[k].setZero();
+      }
     }
     const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
     store3(t.residual.data(),
            times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb) + load3(bias.data()));
   }
   if (!reuse_factor) island.system.factor(island.inverse_mass, island.rows);
+  // The velocity changes (column 0 of dv) into the bodies' velocities and the impulse changes
+  // (column 0 of dp) into the joints' lanes, read where the solve left them.
+  const auto apply = [&](const auto& dv, const auto& dp) {
+    for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+      simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
+      const Vec6 now = velocity_of(v) + dv[b].col(0);
+      for (int k = 0; k < 3; ++k) {
+        v.v[k] = static_cast<float>(now[k]);
+        v.w[k] = static_cast<float>(now[3 + k]);
+      }
+    }
+    for (std::size_t k = 0; k < island.joints.size() && which.add_impulses; ++k) {
+      const float delta[3] = {static_cast<float>(dp[k](0, 0)), static_cast<float>(dp[k](1, 0)),
+                              static_cast<float>(dp[k](2, 0))};
+      lanes.add_impulses(island.joints[k], delta);
+    }
+  };
   if (with_bias) {
     island.system.solve(island.rows, island.dv, island.dp);
-  } else {
-    // The velocities and the position projection together (move_positions, below).
-    island.system.solve(island.rows, island.error, island.dv_pair, island.dp_pair);
-    for (std::size_t b = 0; b < island.dv.size(); ++b) island.dv[b] = island.dv_pair[b].col(0);
-    for (std::size_t k = 0; k < island.dp.size(); ++k) island.dp[k] = island.dp_pair[k].col(0);
+    apply(island.dv, island.dp);
+    return;
   }
-  for (std::size_t b = 0; b < island.bodies.size(); ++b) {
-    simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
-    const Vec6 now = velocity_of(v) + island.dv[b];
-    for (int k = 0; k < 3; ++k) {
-      v.v[k] = static_cast<float>(now[k]);
-      v.w[k] = static_cast<float>(now[3 + k]);
-    }
-  }
-  for (std::size_t k = 0; k < island.joints.size() && which.add_impulses; ++k) {
-    const float delta[3] = {static_cast<float>(island.dp[k][0]),
-                            static_cast<float>(island.dp[k][1]),
-                            static_cast<float>(island.dp[k][2])};
-    lanes.add_impulses(island.joints[k], delta);
-  }
-  if (with_bias) return;
+  // The velocities and the position projection together (move_positions, below).
+  island.system.solve(island.rows, island.error, island.dv_pair, island.dp_pair);
+  apply(island.dv_pair, island.dp_pair);
   move_positions(island.bodies, sb, [&](std::size_t b) { return island.dv_pair[b].col(1); });
   // Where the projection left a joint open by more than kProjectionTolerance (besides what is
   // held back), Newton steps: the rows again at the projected positions, a new factor (the

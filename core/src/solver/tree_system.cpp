@@ -197,7 +197,7 @@ void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
                         const std::vector<TreeJoint>& joints) {
   // The blocks of H; each becomes its reduced block's inverse when its node is eliminated. A
   // body of many children sums M and their terms; a chain link reads W = M^-1.
-  inverse_mass_ = inverse_mass;
+  inverse_mass_ = inverse_mass.data();
   for (std::size_t b = 0; b < body_block_.size(); ++b) {
     if (body_child_[b] != kManyChildren) continue;
     Mat6& block = body_block_[b];
@@ -306,7 +306,11 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
                                std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const {
   using JointColumns = Eigen::Matrix<double, 3, Columns>;
   using BodyColumns = Eigen::Matrix<double, 6, Columns>;
-  for (BodyColumns& b : body_rhs) b.setZero();
+  // Only a body of many children has a right side of its own (a chain link's is folded into
+  // its joints'): the others are neither read nor cleared.
+  for (std::size_t b = 0; b < body_rhs.size(); ++b) {
+    if (body_child_[b] == kManyChildren) body_rhs[b].setZero();
+  }
   for (std::size_t j = 0; j < joints.size(); ++j) {
     joint_rhs[j].col(0) = -joints[j].residual;
     if constexpr (Columns == 2) joint_rhs[j].col(1) = -(*second)[j];
