@@ -638,7 +638,8 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
   }
   const int team = run_team(w, threads, run);
   const double team_ms = since_start() * 1e-3;
-  if (choice.by_policy) w.thread_policy.record(team_ms, fresh_content);
+  // A team smaller than the policy asked for did not run the step on the count it is judging.
+  if (choice.by_policy) w.thread_policy.record(team_ms, fresh_content || team < threads);
   if (profiling) {
     StepProfile& p = w.profile;
     p.step_ms = team_ms + (load_alone ? contact_solver.layout().load_ms : 0.0);
