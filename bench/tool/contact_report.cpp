@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "tool/elapsed_ms.hpp"
 #include "tool/report_files.hpp"
 
 namespace softstep::tool {
@@ -41,8 +42,7 @@ void ContactSamples::add_step(const World& world, ContactRows step_rows) {
   layout_kept += world.last_step_profile().contact_layout_kept ? 1 : 0;
   const auto start = std::chrono::steady_clock::now();
   (void)world.contact_readings();
-  readings_ms.push_back(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  readings_ms.push_back(elapsed_ms(start));
   colors = plan.contact_colors;
   overflow = plan.contact_overflow;
 }

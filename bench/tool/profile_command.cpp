@@ -7,18 +7,19 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "softstep/scene_file.hpp"
 #include "tool/contact_report.hpp"
+#include "tool/elapsed_ms.hpp"
 #include "tool/plan_report.hpp"
 #include "tool/profile_recording.hpp"
-#include "tool/recording_overhead.hpp"
 #include "tool/progress_bar.hpp"
+#include "tool/recording_overhead.hpp"
 #include "tool/report_files.hpp"
 #include "tool/scene_options.hpp"
 #include "tool/traffic_report.hpp"
@@ -28,11 +29,6 @@ namespace softstep::tool {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-      .count();
-}
 
 double microseconds(std::chrono::steady_clock::duration d) {
   return std::chrono::duration<double, std::micro>(d).count();
@@ -195,8 +191,7 @@ int profile_command(ProfileOptions o) {
         }
       }
       // The stages count from the threads' start.
-      samples.add(profile, std::chrono::duration<double, std::milli>(t1 - t0).count(),
-                  call_start_us + profile.team_start_ms * 1e3);
+      samples.add(profile, ms_between(t0, t1), call_start_us + profile.team_start_ms * 1e3);
       if (run.after_step) run.after_step();
       if (i % error_every == 0 || i + 1 == steps) {
         worst_error_run = std::max(worst_error_run, scenes::joint_errors(world, run.joints).max);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "softstep/scene_file.hpp"
+#include "tool/elapsed_ms.hpp"
 #include "tool/report_files.hpp"
 
 namespace softstep::tool {
@@ -20,8 +21,7 @@ void RecordingTwin::step(double dt, std::span<const ContactManifold> contacts,
   const auto start = std::chrono::steady_clock::now();
   if (with_contacts) twin_.step(dt, contacts);
   else twin_.step(dt);
-  recording_ms_.push_back(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  recording_ms_.push_back(elapsed_ms(start));
 }
 
 void RecordingTwin::finish(const World& world, const std::vector<double>& plain_ms) {

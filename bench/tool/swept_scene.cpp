@@ -6,17 +6,13 @@
 #include <sstream>
 
 #include "softstep/recording.hpp"
+#include "tool/elapsed_ms.hpp"
 
 namespace softstep::tool {
 
 namespace {
 
 constexpr double kSceneDt = 1.0 / 60.0;
-
-double elapsed_ms(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
-      .count();
-}
 
 }  // namespace
 
