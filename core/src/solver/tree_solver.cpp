@@ -145,6 +145,23 @@ void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen:
   }
 }
 
+// fill_jacobians, and J v for the bodies' velocities va and vb. A ball joint's J v comes from
+// its columns in registers: read back from the block just stored, each column's two-double
+// load waited for the two single stores it spans, which a store cannot forward (14 % of
+// solve_island's samples on the whip, Zen 4).
+FourDoubles fill_jacobians_times(const JointSlot& j, const Eigen::Vector3d& r_a,
+                                 const Eigen::Vector3d& r_b, const Eigen::Vector3d& separation,
+                                 const Vec6& va, const Vec6& vb, TreeJoint& t) {
+  if (j.type == JointType::Ball) {
+    const BallColumns rows_a = ball_columns(-1.0, r_a), rows_b = ball_columns(1.0, r_b);
+    store_columns(rows_a, t.jacobian[0]);
+    store_columns(rows_b, t.jacobian[1]);
+    return columns_times(rows_a, va) + columns_times(rows_b, vb);
+  }
+  fill_jacobians(j, r_a, r_b, separation, t);
+  return times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
+}
+
 // More projections run where the first left a joint open by more than this: J dx = -C is
 // linear, and an anchor of a link turning fast moves on an arc, not along its tangent. At most
 // this many more per relax pass (each a factor and a solve; the whips need two).
@@ -342,20 +359,10 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
     TreeJoint& t = island.rows[k];
     Eigen::Vector3d c = violation(j, separation);
-    // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's. A
-    // ball joint's new rows give J v from registers: read back from the block just stored,
-    // each column's two-double load waited for the two single stores it spans, which a store
-    // cannot forward (14 % of solve_island's samples on the whip, Zen 4).
-    FourDoubles jv;
-    if (!reuse_factor && j.type == JointType::Ball) {
-      const BallColumns rows_a = ball_columns(-1.0, r_a), rows_b = ball_columns(1.0, r_b);
-      store_columns(rows_a, t.jacobian[0]);
-      store_columns(rows_b, t.jacobian[1]);
-      jv = columns_times(rows_a, va) + columns_times(rows_b, vb);
-    } else {
-      if (!reuse_factor) fill_jacobians(j, r_a, r_b, separation, t);
-      jv = times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
-    }
+    // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's.
+    const FourDoubles jv =
+        reuse_factor ? times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb)
+                     : fill_jacobians_times(j, r_a, r_b, separation, va, vb, t);
     if (!with_bias) {
       // What the projection removes: all the violation this step's own motion made (the
       // drift of links turning fast, which the velocity solve cannot see), and of what was
