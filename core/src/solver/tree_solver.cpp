@@ -149,9 +149,9 @@ void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen:
 // its columns in registers: read back from the block just stored, each column's two-double
 // load waited for the two single stores it spans, which a store cannot forward (14 % of
 // solve_island's samples on the whip, Zen 4).
-FourDoubles fill_jacobians_times(const JointSlot& j, const Eigen::Vector3d& r_a,
-                                 const Eigen::Vector3d& r_b, const Eigen::Vector3d& separation,
-                                 const Vec6& va, const Vec6& vb, TreeJoint& t) {
+[[gnu::always_inline]] inline FourDoubles fill_jacobians_times(
+    const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
+    const Eigen::Vector3d& separation, const Vec6& va, const Vec6& vb, TreeJoint& t) {
   if (j.type == JointType::Ball) {
     const BallColumns rows_a = ball_columns(-1.0, r_a), rows_b = ball_columns(1.0, r_b);
     store_columns(rows_a, t.jacobian[0]);
