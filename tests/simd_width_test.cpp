@@ -5,6 +5,7 @@
 
 #include <ostream>
 #include <thread>
+#include <vector>
 
 #include "scenes/chain_scene.hpp"
 #include "simd_widths.hpp"
@@ -193,6 +194,39 @@ TEST(Threads, EveryStagePathIsBitIdenticalOnTwoThreads) {
   };
   for (bool warm_start : {true, false}) {
     EXPECT_EQ(run(2, warm_start), run(1, warm_start)) << "warm start " << warm_start;
+  }
+}
+
+// WorldSettings::solver = DirectForTrees on a single long chain: its island is rooted at its
+// centre and split in two parts (TreeSystem::split), which two threads eliminate at once,
+// meeting at team barriers (tree_solver.hpp). Stepped whole and stage by stage (a loose body
+// far off sends it through the stages), two threads must give one thread's bits. This is also
+// ThreadSanitizer's check that the two halves share nothing between barriers.
+TEST(Threads, OneLongTreeIslandSharedByTwoThreadsGivesOneThreadsBits) {
+  const auto run = [](int threads, bool loose_body) {
+    WorldSettings s;
+    s.threads = threads;
+    s.fixed_threads = true;
+    s.solver = SolverMode::DirectForTrees;
+    World world(s);
+    scenes::ChainOptions o;
+    o.links = 400;
+    o.tilt = 0.3;
+    o.link_masses = std::vector<double>(399, 1.0);
+    o.link_masses.push_back(100.0);
+    scenes::build_chain(world, o);
+    if (loose_body) {
+      BodyDef loose;
+      loose.position = {1000.0, 0.0, 0.0};
+      world.create_body(loose);
+    }
+    EXPECT_EQ(world.step_plan().tree_islands_split, 1u);
+    EXPECT_EQ(world.step_plan().tree_islands_whole, !loose_body);
+    for (int i = 0; i < 30; ++i) world.step(1.0 / 60.0);
+    return world.state_hash();
+  };
+  for (bool loose_body : {false, true}) {
+    EXPECT_EQ(run(2, loose_body), run(1, loose_body)) << "loose body " << loose_body;
   }
 }
 

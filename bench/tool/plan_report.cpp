@@ -46,9 +46,9 @@ void print_plan(const StepPlan& plan) {
   std::printf("  awake bodies   %zu, sleeping islands %zu, rows per pass %llu\n", plan.awake_bodies,
               plan.sleeping_islands, static_cast<unsigned long long>(plan.rows_per_pass));
   std::printf(
-      "  solver         %s: %zu tree island(s) exact (%zu joints)%s, iterative: %zu with a "
-      "loop, %zu with other joints\n",
-      solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints,
+      "  solver         %s: %zu tree island(s) exact (%zu joints, %zu split at their centre)%s, "
+      "iterative: %zu with a loop, %zu with other joints\n",
+      solver_mode_name(plan.solver), plan.tree_islands, plan.tree_joints, plan.tree_islands_split,
       plan.tree_islands_whole ? " stepped whole (each its sub-steps in turn)" : "",
       plan.loop_islands, plan.other_islands);
   if (plan.contact_manifolds > 0) {
@@ -69,10 +69,13 @@ void print_plan(const StepPlan& plan) {
 nlohmann::json plan_json(const StepPlan& plan) {
   nlohmann::json j;
   j["specialized"] = plan.specialized ? 1 : 0;
-  j["solver"] = {
-      {"mode", solver_mode_name(plan.solver)}, {"tree_islands", plan.tree_islands},
-      {"tree_joints", plan.tree_joints},       {"loop_islands", plan.loop_islands},
-      {"other_islands", plan.other_islands},   {"tree_islands_whole", plan.tree_islands_whole}};
+  j["solver"] = {{"mode", solver_mode_name(plan.solver)},
+                 {"tree_islands", plan.tree_islands},
+                 {"tree_joints", plan.tree_joints},
+                 {"tree_islands_split", plan.tree_islands_split},
+                 {"loop_islands", plan.loop_islands},
+                 {"other_islands", plan.other_islands},
+                 {"tree_islands_whole", plan.tree_islands_whole}};
   j["stages"] = nlohmann::json::array();
   for (PlanStage st : plan.stages) j["stages"].push_back(plan_stage_name(st));
   j["effects"] = {{"gravity", plan.gravity},

@@ -68,6 +68,7 @@ void World::Impl::build_plan() {
   p.solver = settings.solver;
   p.tree_islands = trees.counts().tree_islands;
   p.tree_joints = trees.counts().tree_joints;
+  p.tree_islands_split = trees.counts().split_islands;
   p.loop_islands = trees.counts().loop_islands;
   p.other_islands = trees.counts().other_islands;
   const bool exact = joints_awake && !trees.empty();

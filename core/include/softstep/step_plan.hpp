@@ -76,6 +76,10 @@ struct StepPlan {
   SolverMode solver = SolverMode::Iterative;
   std::size_t tree_islands = 0;   // solved exactly: their joints form a tree
   std::size_t tree_joints = 0;    // the joints of those islands
+  // Of those, rooted at their centre and split in two parts (8 joints and more): an island of
+  // 256 joints or more that is over a thread's share of tree_joints runs its parts on two
+  // threads (a single long chain; solver/tree_solver.hpp).
+  std::size_t tree_islands_split = 0;
   std::size_t loop_islands = 0;   // a loop through movable bodies: solved iteratively
   std::size_t other_islands = 0;  // a joint kind or spring the exact pass lacks: iterative
   // Every awake body is in an exactly solved island and no joint runs a Gauss-Seidel pass:

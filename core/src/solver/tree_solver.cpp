@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "solver/four_doubles.hpp"
+#include "solver/team.hpp"
 #include "world_impl.hpp"
 
 namespace softstep::solver {
@@ -98,15 +99,17 @@ double violation_size(const JointSlot& j, const Eigen::Vector3d& separation) {
   return std::abs(separation.norm() - std::get<DistanceJointDef>(j.def).rest_length);
 }
 
-// Moves the bodies' deltas by dx_of(b) (linear, then a first-order turn), not their
-// velocities: the relax pass's position projection.
+// Moves the deltas of the bodies `part` lists (island-local indices into the island's body
+// `slots`) by dx_of(b) (linear, then a first-order turn), not their velocities: the relax
+// pass's position projection.
 // The turn is q + (0, dw / 2) q, normalized, spelt out on the four coefficients (x, y, z, w as
 // the record stores them): through Eigen's quaternion product and normalize() this loop was a
 // third of the exact relax pass's own work (perf, the 1,000-link whip).
 template <class Dx>
-void move_positions(const std::vector<std::uint32_t>& bodies, SolverBodies& sb, Dx dx_of) {
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    simd::DeltaRecord& d = sb.delta[bodies[b] + 1];
+void move_positions(const std::vector<std::uint32_t>& part, const std::vector<std::uint32_t>& slots,
+                    SolverBodies& sb, Dx dx_of) {
+  for (const std::uint32_t b : part) {
+    simd::DeltaRecord& d = sb.delta[slots[b] + 1];
     const Vec6 dx = dx_of(b);
     for (int k = 0; k < 3; ++k) d.dp[k] = static_cast<float>(double(d.dp[k]) + dx[k]);
     const double x = d.dq[0], y = d.dq[1], z = d.dq[2], w = d.dq[3];
@@ -168,7 +171,30 @@ void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen:
 constexpr double kProjectionTolerance = 1e-6;  // m
 constexpr int kMaxExtraProjections = 2;
 
+// An island is shared by two threads only from this size: a shared sub-step meets at eight
+// barriers (about a microsecond each on an idle machine), a link's exact work is about a
+// quarter microsecond a sub-step.
+constexpr std::size_t kShareMinJoints = 256;
+
 }  // namespace
+
+void TreeSolver::Crew::sync() const {
+  if (team != nullptr) team_barrier(*team);
+}
+
+TreeSolver::Crew TreeSolver::member_of(const Share& share) {
+  Crew crew;
+  crew.first_part = std::min(share.thread, 2);
+  crew.end_part = std::min(share.thread + 1, 2);
+  crew.lead = share.thread == 0;
+  crew.team = &share;
+  return crew;
+}
+
+bool TreeSolver::shared(const Island& island, int threads) const {
+  return threads >= 2 && island.system.split() && island.joints.size() >= kShareMinJoints &&
+         island.joints.size() * static_cast<std::size_t>(threads) > counts_.tree_joints;
+}
 
 void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlots& bodies,
                        const LaneSolver& lanes) {
@@ -246,11 +272,19 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
       ++counts_.loop_islands;  // a loop through the ground: two joints to static or kinematic
       continue;
     }
-    for (std::uint32_t s : island.bodies)
-      island.records.push_back(static_cast<std::int32_t>(s + 1));
+    for (std::uint32_t b = 0; b < island.bodies.size(); ++b) {
+      Part& part = island.parts[island.system.body_part(b)];
+      part.bodies.push_back(b);
+      part.records.push_back(static_cast<std::int32_t>(island.bodies[b] + 1));
+    }
+    for (std::uint32_t k = 0; k < island.joints.size(); ++k) {
+      island.parts[island.system.joint_part(k)].joints.push_back(k);
+    }
     island.inverse_mass.resize(island.bodies.size());
     island.dv.resize(island.bodies.size());
     island.dp.resize(island.joints.size());
+    island.dv_pair.resize(island.bodies.size());
+    island.dp_pair.resize(island.joints.size());
     island.error.resize(island.joints.size());
     island.held_back.resize(island.joints.size());
     island.kept.resize(island.joints.size());
@@ -264,6 +298,7 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
       island.solver_b.push_back(solver_index(bodies[slot.body_b], slot.body_b));
     }
     ++counts_.tree_islands;
+    if (island.system.split()) ++counts_.split_islands;
     counts_.tree_joints += island.joints.size();
     counts_.tree_bodies += island.bodies.size();
     islands_.push_back(std::move(island));
@@ -273,72 +308,82 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
 void TreeSolver::pass(const JointSlots& joints, const BodySlots& bodies,
                       SolverBodies& solver_bodies, LaneSolver& lanes,
                       const simd::SubstepContext& ctx, Pass which, const Share& share) {
-  // Islands are disjoint in bodies and joints: each thread solves its slice alone. One long
-  // chain is one island and runs on one thread.
+  // Islands are disjoint in bodies and joints: each thread solves its slice alone, after the
+  // islands the team shares.
+  const Crew crew = member_of(share);
+  for (Island& island : islands_) {
+    if (shared(island, share.threads)) {
+      solve_island(island, joints, bodies, solver_bodies, lanes, ctx, which, crew);
+    }
+  }
   const Slice mine = slice_of(islands_.size(), share);
   for (std::size_t i = mine.begin; i < mine.end; ++i) {
-    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, which);
+    if (shared(islands_[i], share.threads)) continue;
+    solve_island(islands_[i], joints, bodies, solver_bodies, lanes, ctx, which, alone());
   }
 }
 
 void TreeSolver::whole_substeps(const JointSlots& joints, const BodySlots& bodies, SolverBodies& sb,
                                 LaneSolver& lanes, const simd::SubstepContext& ctx,
                                 const Whole& whole, const Share& share) {
+  const Crew crew = member_of(share);
+  for (Island& island : islands_) {
+    if (shared(island, share.threads))
+      whole_island(island, joints, bodies, sb, lanes, ctx, whole, crew);
+  }
   const Slice mine = slice_of(islands_.size(), share);
   for (std::size_t i = mine.begin; i < mine.end; ++i) {
-    Island& island = islands_[i];
-    for (int sub = 0; sub < whole.substeps; ++sub) {
-      // The lanes' impulses were cleared once before (as at each sub-step's start when
-      // stepped stage by stage): only the last sub-step's passes add theirs.
-      const bool last = sub == whole.substeps - 1;
-      lanes.integrate_velocities_of(sb, island.records, ctx, whole.gravity, whole.damping,
+    if (shared(islands_[i], share.threads)) continue;
+    whole_island(islands_[i], joints, bodies, sb, lanes, ctx, whole, alone());
+  }
+}
+
+void TreeSolver::whole_island(Island& island, const JointSlots& joints, const BodySlots& bodies,
+                              SolverBodies& sb, LaneSolver& lanes, const simd::SubstepContext& ctx,
+                              const Whole& whole, const Crew& crew) {
+  for (int sub = 0; sub < whole.substeps; ++sub) {
+    // The lanes' impulses were cleared once before (as at each sub-step's start when stepped
+    // stage by stage): only the last sub-step's passes add theirs.
+    const bool last = sub == whole.substeps - 1;
+    for (int p = crew.first_part; p < crew.end_part; ++p) {
+      lanes.integrate_velocities_of(sb, island.parts[p].records, ctx, whole.gravity, whole.damping,
                                     whole.torque);
+    }
+    crew.sync();  // a joint between the parts reads both bodies' velocities
+    solve_island(island, joints, bodies, sb, lanes, ctx,
+                 {.with_bias = true,
+                  .step_start = sub == 0,
+                  .reuse_relax_factor = sub > 0,
+                  .add_impulses = last},
+                 crew);
+    for (int p = crew.first_part; p < crew.end_part; ++p) {
+      lanes.integrate_positions_of(sb, island.parts[p].records, ctx);
+    }
+    if (whole.relax) {
+      crew.sync();  // and both bodies' positions
       solve_island(island, joints, bodies, sb, lanes, ctx,
-                   {.with_bias = true,
-                    .step_start = sub == 0,
-                    .reuse_relax_factor = sub > 0,
-                    .add_impulses = last});
-      lanes.integrate_positions_of(sb, island.records, ctx);
-      if (whole.relax) {
-        solve_island(island, joints, bodies, sb, lanes, ctx,
-                     {.with_bias = false, .add_impulses = last});
-      }
+                   {.with_bias = false, .add_impulses = last}, crew);
     }
   }
 }
 
 void TreeSolver::solve_island(Island& island, const JointSlots& joints, const BodySlots& bodies,
                               SolverBodies& sb, LaneSolver& lanes, const simd::SubstepContext& ctx,
-                              Pass which) {
+                              Pass which, const Crew& crew) {
+  // Runs work(part) for each part this thread has.
+  const auto each_part = [&](auto&& work) {
+    for (int p = crew.first_part; p < crew.end_part; ++p) work(island.parts[p], p);
+  };
   const bool with_bias = which.with_bias;
   // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
-  // the bodies have moved only by the position projection since.
+  // the bodies have moved only by the position projection since. (The lead writes the flags
+  // below in the root part, after every thread has read them.)
   const bool reuse_factor = with_bias && which.reuse_relax_factor && island.relax_factored;
-  island.relax_factored = !with_bias;
-  // W = M^-1 per body from the solver's mass record (the geometric-stiffness inertia included), so
-  // the exact pass and the Gauss-Seidel passes solve with the same masses.
-  for (std::size_t b = 0; b < island.bodies.size() && !reuse_factor; ++b) {
-    const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
-    InverseMass& w = island.inverse_mass[b];
-    w.linear = double(m.inv_mass);
-    w.angular << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
-        m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
-  }
+  // The last relax pass's check measured the joints where the bodies still are.
+  const bool measured = reuse_factor && island.anchors_current;
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
   const double step = bound * double(ctx.h);
-  if (which.step_start) {
-    for (std::size_t k = 0; k < island.joints.size(); ++k) {
-      const JointSlot& j = joints[island.joints[k]];
-      const BodySlot& a = bodies[j.body_a];
-      const BodySlot& b = bodies[j.body_b];
-      island.anchor_a[k] = a.orientation * j.local_anchor_a;
-      island.anchor_b[k] = b.orientation * j.local_anchor_b;
-      island.offset[k] = b.position - a.position;
-      island.held_back[k] =
-          violation_size(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
-    }
-  }
   // Joint k's anchors now, as the kernels see them: the step-start anchors in double, turned
   // by the rotation since.
   const auto anchors_now = [&](std::size_t k) {
@@ -348,55 +393,94 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     n.separation = island.offset[k] + (pb.dp - pa.dp) + (n.r_b - n.r_a);
     return n;
   };
-  // The last relax pass's check measured the joints where the bodies still are.
-  const bool measured = reuse_factor && island.anchors_current;
-  island.anchors_current = false;
-  for (std::size_t k = 0; k < island.joints.size(); ++k) {
-    const JointSlot& j = joints[island.joints[k]];
-    const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
-    const auto [r_a, r_b, separation] = measured ? island.anchors[k] : anchors_now(k);
-    const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
-    const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
-    TreeJoint& t = island.rows[k];
-    Eigen::Vector3d c = violation(j, separation);
-    // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's.
-    const FourDoubles jv =
-        reuse_factor ? times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb)
-                     : fill_jacobians_times(j, r_a, r_b, separation, va, vb, t);
-    if (!with_bias) {
-      // What the projection removes: all the violation this step's own motion made (the
-      // drift of links turning fast, which the velocity solve cannot see), and of what was
-      // there at the step's start (a joint created apart, a body moved by the user) at most
-      // max_correction_speed * h per sub-step. Bounding the whole of C, as the biased pass
-      // bounds its speed, left the 1,000-link whip's joints open 2.1 cm as it cracked (4
-      // sub-steps; 2.6e-4 m bounding only what was there before).
-      // Sizes, not rows: a violation held back turns with the bodies, and compared row by row
-      // its turned part would pass for new.
-      double& held = island.held_back[k];
-      if (held > 0.0) {
-        const double size = violation_size(j, separation);
-        held = std::min(held, size);  // the motion since may have closed some of it
-        const double allowed = size - held + step;
-        island.error[k] = size > allowed ? Eigen::Vector3d(c * (allowed / size)) : c;
-        island.kept[k] = c - island.error[k];
-        held = std::max(held - step, 0.0);
-      } else {
-        // Nothing held back (a joint whose step-start violation was under the bound, from the
-        // step's second sub-step on): all of C goes, as the branch above gives for held = 0,
-        // without its square root per joint (7 % of the exact pass's own samples on 100
-        // chains of 1,000 links).
-        island.error[k] = c;
-        island.kept[k].setZero();
+  // The rows, the part's share of the factor, and its half of the solve up to the root.
+  each_part([&](Part& part, int p) {
+    // W = M^-1 per body from the solver's mass record (the geometric-stiffness inertia
+    // included), so the exact pass and the Gauss-Seidel passes solve with the same masses.
+    for (std::size_t i = 0; i < part.bodies.size() && !reuse_factor; ++i) {
+      const std::uint32_t b = part.bodies[i];
+      const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
+      InverseMass& w = island.inverse_mass[b];
+      w.linear = double(m.inv_mass);
+      w.angular << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
+          m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
+    }
+    if (which.step_start) {
+      for (const std::uint32_t k : part.joints) {
+        const JointSlot& j = joints[island.joints[k]];
+        const BodySlot& a = bodies[j.body_a];
+        const BodySlot& b = bodies[j.body_b];
+        island.anchor_a[k] = a.orientation * j.local_anchor_a;
+        island.anchor_b[k] = b.orientation * j.local_anchor_b;
+        island.offset[k] = b.position - a.position;
+        island.held_back[k] =
+            violation_size(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
       }
     }
-    const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
-    store3(t.residual.data(), jv + load3(bias.data()));
+    for (const std::uint32_t k : part.joints) {
+      const JointSlot& j = joints[island.joints[k]];
+      const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
+      const auto [r_a, r_b, separation] = measured ? island.anchors[k] : anchors_now(k);
+      const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
+      const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
+      TreeJoint& t = island.rows[k];
+      Eigen::Vector3d c = violation(j, separation);
+      // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's.
+      const FourDoubles jv = reuse_factor
+                                 ? times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb)
+                                 : fill_jacobians_times(j, r_a, r_b, separation, va, vb, t);
+      if (!with_bias) {
+        // What the projection removes: all the violation this step's own motion made (the
+        // drift of links turning fast, which the velocity solve cannot see), and of what was
+        // there at the step's start (a joint created apart, a body moved by the user) at most
+        // max_correction_speed * h per sub-step. Bounding the whole of C, as the biased pass
+        // bounds its speed, left the 1,000-link whip's joints open 2.1 cm as it cracked (4
+        // sub-steps; 2.6e-4 m bounding only what was there before).
+        // Sizes, not rows: a violation held back turns with the bodies, and compared row by
+        // row its turned part would pass for new.
+        double& held = island.held_back[k];
+        if (held > 0.0) {
+          const double size = violation_size(j, separation);
+          held = std::min(held, size);  // the motion since may have closed some of it
+          const double allowed = size - held + step;
+          island.error[k] = size > allowed ? Eigen::Vector3d(c * (allowed / size)) : c;
+          island.kept[k] = c - island.error[k];
+          held = std::max(held - step, 0.0);
+        } else {
+          // Nothing held back (a joint whose step-start violation was under the bound, from
+          // the step's second sub-step on): all of C goes, as the branch above gives for held
+          // = 0, without its square root per joint (7 % of the exact pass's own samples on
+          // 100 chains of 1,000 links).
+          island.error[k] = c;
+          island.kept[k].setZero();
+        }
+      }
+      const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
+      store3(t.residual.data(), jv + load3(bias.data()));
+    }
+    if (!reuse_factor) island.system.factor_part(p, island.inverse_mass, island.rows);
+    if (with_bias) {
+      island.system.solve_up<1>(p, island.rows, nullptr);
+    } else {
+      island.system.solve_up<2>(p, island.rows, &island.error);
+    }
+  });
+  crew.sync();
+  if (crew.lead) {
+    island.relax_factored = !with_bias;
+    island.anchors_current = false;
+    if (!reuse_factor) island.system.factor_root(island.inverse_mass, island.rows);
+    if (with_bias) {
+      island.system.solve_root<1>(island.rows, island.dv, island.dp);
+    } else {
+      island.system.solve_root<2>(island.rows, island.dv_pair, island.dp_pair);
+    }
   }
-  if (!reuse_factor) island.system.factor(island.inverse_mass, island.rows);
-  // The velocity changes (column 0 of dv) into the bodies' velocities and the impulse changes
-  // (column 0 of dp) into the joints' lanes, read where the solve left them.
-  const auto apply = [&](const auto& dv, const auto& dp) {
-    for (std::size_t b = 0; b < island.bodies.size(); ++b) {
+  crew.sync();
+  // The velocity changes (column 0 of dv) into the part's bodies' velocities and the impulse
+  // changes (column 0 of dp) into its joints' lanes, read where the solve left them.
+  const auto apply = [&](const Part& part, const auto& dv, const auto& dp) {
+    for (const std::uint32_t b : part.bodies) {
       simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
       const Vec6 now = velocity_of(v) + dv[b].col(0);
       for (int k = 0; k < 3; ++k) {
@@ -404,46 +488,69 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         v.w[k] = static_cast<float>(now[3 + k]);
       }
     }
-    for (std::size_t k = 0; k < island.joints.size() && which.add_impulses; ++k) {
+    for (std::size_t i = 0; i < part.joints.size() && which.add_impulses; ++i) {
+      const std::uint32_t k = part.joints[i];
       const float delta[3] = {static_cast<float>(dp[k](0, 0)), static_cast<float>(dp[k](1, 0)),
                               static_cast<float>(dp[k](2, 0))};
       lanes.add_impulses(island.joints[k], delta);
     }
   };
   if (with_bias) {
-    island.system.solve(island.rows, island.dv, island.dp);
-    apply(island.dv, island.dp);
+    each_part([&](Part& part, int p) {
+      island.system.solve_down<1>(p, island.rows, island.dv, island.dp);
+      apply(part, island.dv, island.dp);
+    });
     return;
   }
   // The velocities and the position projection together (move_positions, below).
-  island.system.solve(island.rows, island.error, island.dv_pair, island.dp_pair);
-  apply(island.dv_pair, island.dp_pair);
-  move_positions(island.bodies, sb, [&](std::size_t b) { return island.dv_pair[b].col(1); });
+  each_part([&](Part& part, int p) {
+    island.system.solve_down<2>(p, island.rows, island.dv_pair, island.dp_pair);
+    apply(part, island.dv_pair, island.dp_pair);
+    move_positions(part.bodies, island.bodies, sb,
+                   [&](std::size_t b) { return island.dv_pair[b].col(1); });
+  });
   // Where the projection left a joint open by more than kProjectionTolerance (besides what is
   // held back), Newton steps: the rows again at the projected positions, a new factor (the
   // next solve pass reuses it), and J dx = -C once more. The whips need them where links turn
   // fast: the 100-link whip cracking at 4 sub-steps (160 rad/s) kept 7 mm after one
   // projection, 0.8 mm after two more with the same factor, 1e-6 m after two Newton steps.
   for (int extra = 0; extra < kMaxExtraProjections; ++extra) {
-    double worst = 0.0;
-    for (std::size_t k = 0; k < island.joints.size(); ++k) {
-      island.anchors[k] = anchors_now(k);
-      const Eigen::Vector3d left =
-          violation(joints[island.joints[k]], island.anchors[k].separation) - island.kept[k];
-      island.rows[k].residual = left;
-      worst = std::max(worst, left.cwiseAbs().maxCoeff());
-    }
-    if (worst <= kProjectionTolerance) {
-      island.anchors_current = true;  // until the bodies move: the next solve pass reads them
+    crew.sync();  // a joint between the parts reads both bodies' new positions
+    each_part([&](Part& part, int p) {
+      double worst = 0.0;
+      for (const std::uint32_t k : part.joints) {
+        island.anchors[k] = anchors_now(k);
+        const Eigen::Vector3d left =
+            violation(joints[island.joints[k]], island.anchors[k].separation) - island.kept[k];
+        island.rows[k].residual = left;
+        worst = std::max(worst, left.cwiseAbs().maxCoeff());
+      }
+      island.worst[p] = worst;
+    });
+    crew.sync();
+    if (std::max(island.worst[0], island.worst[1]) <= kProjectionTolerance) {
+      // Until the bodies move: the next solve pass reads them.
+      if (crew.lead) island.anchors_current = true;
       return;
     }
-    for (std::size_t k = 0; k < island.joints.size(); ++k) {
-      const Anchors& now = island.anchors[k];
-      fill_jacobians(joints[island.joints[k]], now.r_a, now.r_b, now.separation, island.rows[k]);
+    each_part([&](Part& part, int p) {
+      for (const std::uint32_t k : part.joints) {
+        const Anchors& now = island.anchors[k];
+        fill_jacobians(joints[island.joints[k]], now.r_a, now.r_b, now.separation, island.rows[k]);
+      }
+      island.system.factor_part(p, island.inverse_mass, island.rows);
+      island.system.solve_up<1>(p, island.rows, nullptr);
+    });
+    crew.sync();
+    if (crew.lead) {
+      island.system.factor_root(island.inverse_mass, island.rows);
+      island.system.solve_root<1>(island.rows, island.dv, island.dp);
     }
-    island.system.factor(island.inverse_mass, island.rows);
-    island.system.solve(island.rows, island.dv, island.dp);
-    move_positions(island.bodies, sb, [&](std::size_t b) { return island.dv[b]; });
+    crew.sync();
+    each_part([&](Part& part, int p) {
+      island.system.solve_down<1>(p, island.rows, island.dv, island.dp);
+      move_positions(part.bodies, island.bodies, sb, [&](std::size_t b) { return island.dv[b]; });
+    });
   }
 }
 

@@ -43,6 +43,9 @@ struct TreeCounts {
   // kinematic body): iterative.
   std::size_t loop_islands = 0;
   std::size_t other_islands = 0;  // a joint the exact pass does not handle: iterative
+  // Of the tree islands, those rooted at their centre in two parts (TreeSystem::split): one
+  // that is most of a step's exact work runs its two parts on two threads.
+  std::size_t split_islands = 0;
 };
 
 class TreeSolver {
@@ -68,7 +71,10 @@ class TreeSolver {
     bool add_impulses = true;
   };
   // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
-  // joints' lane impulses; the relax pass also moves the bodies' positions.
+  // joints' lane impulses; the relax pass also moves the bodies' positions. An island that is
+  // more than a thread's share of the exact joints (a single long chain) is shared: with two
+  // threads or more, threads 0 and 1 each run one of its parts (tree_system.hpp) and meet at
+  // team barriers; every thread of the team must call.
   void pass(const JointSlots& joints, const BodySlots& bodies, SolverBodies& solver_bodies,
             LaneSolver& lanes, const simd::SubstepContext& ctx, Pass which, const Share& share);
   // The step's sub-steps, island after island (StepPlan::tree_islands_whole): each of this
@@ -91,10 +97,16 @@ class TreeSolver {
   struct Anchors {
     Eigen::Vector3d r_a, r_b, separation;
   };
+  // An island's bodies and joints (island-local indices) in one of its two parts
+  // (TreeSystem::body_part, joint_part), with the bodies' solver records.
+  struct Part {
+    std::vector<std::uint32_t> bodies, joints;
+    std::vector<std::int32_t> records;
+  };
   struct Island {
     std::vector<std::uint32_t> bodies;             // movable body slots (island-local order)
-    std::vector<std::int32_t> records;             // their solver records (slot + 1)
     std::vector<std::uint32_t> joints;             // joint slots
+    Part parts[2];
     std::vector<std::int32_t> solver_a, solver_b;  // per joint its bodies' solver records
     std::vector<TreeJoint> rows;                   // per joint, refilled each pass
     std::vector<InverseMass> inverse_mass;
@@ -117,12 +129,31 @@ class TreeSolver {
     bool anchors_current = false;
     std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
     std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
+    // Per part, the largest joint gap the relax pass's last check left (its Newton steps).
+    double worst[2] = {0.0, 0.0};
     TreeSystem system;
     bool relax_factored = false;  // the system holds the last pass's factor, a relax pass's
   };
+  // Who works on one island: one thread alone (both parts and the root part, no barrier), or
+  // one of a team sharing it (thread 0 part 0 and the root part, thread 1 part 1, any other
+  // only the barriers).
+  struct Crew {
+    int first_part = 0, end_part = 2;  // this thread's parts: [first_part, end_part)
+    bool lead = true;                  // runs the root part
+    const Share* team = nullptr;       // when shared: a team barrier between phases
+    void sync() const;
+  };
+  static Crew alone() { return {}; }
+  static Crew member_of(const Share& share);
+  // Whether a team of `threads` shares this island (a single long chain): an island of
+  // kShareMinJoints or more that is split and more than a thread's share of the exact joints.
+  bool shared(const Island& island, int threads) const;
   void solve_island(Island& island, const JointSlots& joints, const BodySlots& bodies,
                     SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
-                    Pass which);
+                    Pass which, const Crew& crew);
+  void whole_island(Island& island, const JointSlots& joints, const BodySlots& bodies,
+                    SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
+                    const Whole& whole, const Crew& crew);
   std::vector<Island> islands_;
   TreeCounts counts_;
 };

@@ -1,78 +1,227 @@
 #include "solver/tree_system.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
+#include <utility>
 
 #include "solver/four_doubles.hpp"
 
 namespace softstep::solver {
 
+namespace {
+
+// A node id: body b is b, joint j is bodies + j.
+struct Graph {
+  std::uint32_t bodies;
+  const std::vector<TreeJoint>& joints;
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> around;  // per body
+
+  bool is_joint(std::uint32_t node) const { return node >= bodies; }
+  // Calls visit(neighbour, side) for every neighbour of `node`; side is the end of the joint
+  // (the node or the neighbour) at the body.
+  template <class Visit>
+  void neighbours(std::uint32_t node, Visit visit) const {
+    if (!is_joint(node)) {
+      for (const auto& [joint, side] : around[node]) visit(joint, side);
+      return;
+    }
+    const TreeJoint& j = joints[node - bodies];
+    for (std::uint8_t s = 0; s < 2; ++s) {
+      if (j.body[s] >= 0) visit(static_cast<std::uint32_t>(j.body[s]), s);
+    }
+  }
+};
+
+// Breadth first from `root`: the nodes in the order reached, each with the position of its
+// parent (-1 for the root) and the side of the edge to it.
+struct Reached {
+  std::vector<std::uint32_t> node;
+  std::vector<std::int32_t> parent;
+  std::vector<std::uint8_t> side;
+};
+
+Reached breadth_first(const Graph& g, std::uint32_t root, std::uint32_t nodes) {
+  Reached r;
+  r.node.reserve(nodes);
+  std::vector<bool> seen(nodes, false);
+  r.node.push_back(root);
+  r.parent.push_back(-1);
+  r.side.push_back(0);
+  seen[root] = true;
+  for (std::size_t k = 0; k < r.node.size(); ++k) {
+    g.neighbours(r.node[k], [&](std::uint32_t next, std::uint8_t side) {
+      if (seen[next]) return;
+      seen[next] = true;
+      r.node.push_back(next);
+      r.parent.push_back(static_cast<std::int32_t>(k));
+      r.side.push_back(side);
+    });
+  }
+  return r;
+}
+
+// Per position of `r`, the number of nodes in its subtree.
+std::vector<std::uint32_t> subtree_sizes(const Reached& r) {
+  std::vector<std::uint32_t> size(r.node.size(), 1);
+  for (std::size_t k = r.node.size(); k-- > 1;) {
+    size[static_cast<std::size_t>(r.parent[k])] += size[k];
+  }
+  return size;
+}
+
+// An island's elimination order: [part 0 below the root's children][part 1 below them][the
+// root's children of part 0][of part 1][the root], `start` of each of the five groups; and per
+// body and joint its part.
+struct Layout {
+  std::vector<TreeNode> order;
+  std::size_t start[5] = {};
+  std::vector<std::uint8_t> body_part, joint_part;
+};
+
+// The order from `root`, the tree below it split in two parts when `split`. Empty when not
+// every node is reached (not connected).
+Layout lay_out(const Graph& g, std::uint32_t root, bool split) {
+  const std::uint32_t nodes = g.bodies + static_cast<std::uint32_t>(g.joints.size());
+  const Reached r = breadth_first(g, root, nodes);
+  Layout out;
+  if (r.node.size() != nodes) return out;
+  // Per position its part: the root's children go to the lighter part, heaviest first (ties
+  // in breadth-first order), and every other node to its top ancestor's.
+  std::vector<std::uint8_t> part(nodes, 0);
+  if (split) {
+    const std::vector<std::uint32_t> size = subtree_sizes(r);
+    std::vector<std::size_t> tops;
+    for (std::size_t k = 1; k < nodes && r.parent[k] == 0; ++k) tops.push_back(k);
+    std::stable_sort(tops.begin(), tops.end(),
+                     [&](std::size_t a, std::size_t b) { return size[a] > size[b]; });
+    std::uint32_t load[2] = {0, 0};
+    for (std::size_t t : tops) {
+      part[t] = load[1] < load[0] ? 1 : 0;
+      load[part[t]] += size[t];
+    }
+    for (std::size_t k = 1; k < nodes; ++k) {
+      if (r.parent[k] != 0) part[k] = part[static_cast<std::size_t>(r.parent[k])];
+    }
+  }
+  // Leaves first (the breadth-first order reversed), grouped stably: [part 0 below the tops]
+  // [part 1 below the tops][part 0's tops][part 1's tops][the root]. A node's children are in
+  // its group or an earlier one, in the same relative order as before grouping.
+  const auto group = [&](std::size_t k) {
+    if (k == 0) return 4;
+    return (r.parent[k] == 0 ? 2 : 0) + part[k];
+  };
+  std::size_t count[5] = {};
+  for (std::size_t k = 0; k < nodes; ++k) ++count[group(k)];
+  std::size_t start[5] = {0};
+  for (int i = 1; i < 5; ++i) start[i] = start[i - 1] + count[i - 1];
+  std::copy(start, start + 5, out.start);
+  std::vector<std::int32_t> position(nodes);
+  std::size_t next[5];
+  std::copy(start, start + 5, next);
+  for (std::size_t k = nodes; k-- > 0;) position[k] = static_cast<std::int32_t>(next[group(k)]++);
+  out.order.resize(nodes);
+  out.body_part.assign(g.bodies, 0);
+  out.joint_part.assign(g.joints.size(), 0);
+  for (std::size_t k = 0; k < nodes; ++k) {
+    TreeNode n;
+    n.joint = g.is_joint(r.node[k]);
+    n.index = n.joint ? r.node[k] - g.bodies : r.node[k];
+    n.parent = r.parent[k] < 0 ? -1 : position[static_cast<std::size_t>(r.parent[k])];
+    n.side = r.side[k];
+    out.order[static_cast<std::size_t>(position[k])] = n;
+    (n.joint ? out.joint_part[n.index] : out.body_part[n.index]) = part[k];
+  }
+  return out;
+}
+
+}  // namespace
+
 bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joints) {
   order_.clear();
   if (bodies == 0) return false;
-  // Node ids: bodies 0 .. bodies-1, then joint j is bodies + j.
   const std::uint32_t nodes = bodies + static_cast<std::uint32_t>(joints.size());
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> around(bodies);
+  Graph g{bodies, joints, std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>>(bodies)};
   std::size_t edges = 0;
   for (std::uint32_t j = 0; j < joints.size(); ++j) {
     for (std::uint8_t s = 0; s < 2; ++s) {
       const std::int32_t b = joints[j].body[s];
       if (b < 0) continue;
-      around[static_cast<std::size_t>(b)].push_back({bodies + j, s});
+      g.around[static_cast<std::size_t>(b)].push_back({bodies + j, s});
       ++edges;
     }
   }
   if (edges + 1 != nodes) return false;  // a connected graph is a tree iff edges = nodes - 1
-  // A joint on one movable body (its other end static or kinematic) is a leaf whose block,
-  // -Gamma, is 0 for a rigid row: it cannot be eliminated before its body. So such a joint
-  // must be the root, and an island can have one: two (a bridge pinned at both ends) close a
-  // loop through the ground, which this elimination cannot order (a 9x9 body + joint block
-  // would; not done), and the island stays iterative.
+  // A joint on one movable body (its other end static or kinematic) has the block -Gamma, 0
+  // for a rigid row: it cannot be eliminated alone. It can be the root, or a leaf under a chain
+  // link (its body's only child), eliminated with the link in joint space (E = J W J^T is
+  // invertible). An island can have one: two (a bridge pinned at both ends) close a loop
+  // through the ground, and the island stays iterative.
   std::int32_t grounded = -1;
   for (std::uint32_t j = 0; j < joints.size(); ++j) {
     if (joints[j].body[0] >= 0 && joints[j].body[1] >= 0) continue;
     if (grounded >= 0) return false;
     grounded = static_cast<std::int32_t>(j);
   }
-  // Breadth first from the root: a node's parent comes before it, so the reverse is an
-  // order that eliminates every node after its children. Without a grounded joint the root is
-  // body 0, and every joint has a child body.
-  std::vector<TreeNode> bfs;
-  bfs.reserve(nodes);
-  std::vector<bool> seen(nodes, false);
-  if (grounded >= 0) {
-    bfs.push_back({true, static_cast<std::uint32_t>(grounded), -1, 0});
-    seen[bodies + static_cast<std::uint32_t>(grounded)] = true;
-  } else {
-    bfs.push_back({false, 0, -1, 0});
-    seen[0] = true;
-  }
-  for (std::size_t k = 0; k < bfs.size(); ++k) {
-    const TreeNode n = bfs[k];
-    const auto here = static_cast<std::int32_t>(k);
-    if (n.joint) {
-      const TreeJoint& j = joints[n.index];
-      for (std::uint8_t s = 0; s < 2; ++s) {
-        const std::int32_t b = j.body[s];
-        if (b < 0 || seen[static_cast<std::size_t>(b)]) continue;
-        seen[static_cast<std::size_t>(b)] = true;
-        bfs.push_back({false, static_cast<std::uint32_t>(b), here, s});
+  // Without a grounded joint the root is body 0, and every joint has a child body.
+  std::uint32_t root = grounded >= 0 ? bodies + static_cast<std::uint32_t>(grounded) : 0;
+  bool split = false;
+  if (joints.size() >= kSplitJoints) {
+    // The centre: the node whose largest remaining piece, once it is taken out, is smallest
+    // (the first such in breadth-first order from body 0). Rooted there the tree's two halves
+    // are eliminated independently, on two threads when one island is most of a step's work.
+    const Reached from_zero = breadth_first(g, 0, nodes);
+    if (from_zero.node.size() != nodes) return false;  // not connected
+    const std::vector<std::uint32_t> size = subtree_sizes(from_zero);
+    std::vector<std::uint32_t> heaviest(nodes, 0);
+    for (std::size_t k = 1; k < nodes; ++k) {
+      const auto p = static_cast<std::size_t>(from_zero.parent[k]);
+      heaviest[p] = std::max(heaviest[p], size[k]);
+    }
+    std::size_t centre = 0;
+    std::uint32_t best = nodes;
+    for (std::size_t k = 0; k < nodes; ++k) {
+      const std::uint32_t piece = std::max(heaviest[k], nodes - size[k]);
+      if (piece < best) {
+        best = piece;
+        centre = k;
       }
+    }
+    const std::uint32_t centre_node = from_zero.node[centre];
+    if (grounded < 0) {
+      root = centre_node;
+      split = true;
     } else {
-      for (const auto& [node, side] : around[n.index]) {
-        if (seen[node]) continue;
-        seen[node] = true;
-        bfs.push_back({true, node - bodies, here, side});
+      // With a grounded joint the root is a joint on the path from it to the centre, the
+      // nearest the centre with only chain links (bodies of two joints) between it and the
+      // grounded joint. Rooted elsewhere, a joint between the grounded end and the root would
+      // be inverted alone, and a half held at one end can be rigid along a direction (a
+      // straight chain along its axis): its block singular. Folded into chain links up to a
+      // root joint, whose other side moves freely, every pivot stays invertible.
+      const Reached from_centre = breadth_first(g, centre_node, nodes);
+      std::vector<std::size_t> at(nodes);
+      for (std::size_t k = 0; k < nodes; ++k) at[from_centre.node[k]] = k;
+      std::size_t k = at[bodies + static_cast<std::uint32_t>(grounded)];
+      while (from_centre.parent[k] >= 0) {
+        k = static_cast<std::size_t>(from_centre.parent[k]);
+        const std::uint32_t node = from_centre.node[k];
+        if (!g.is_joint(node)) {
+          if (g.around[node].size() != 2) break;
+          continue;
+        }
+        root = node;
+        split = true;
       }
     }
   }
-  if (bfs.size() != nodes) return false;  // not connected
-  order_.resize(nodes);
-  const auto last = static_cast<std::int32_t>(nodes) - 1;
-  for (std::size_t k = 0; k < nodes; ++k) {
-    TreeNode n = bfs[k];
-    if (n.parent >= 0) n.parent = last - n.parent;
-    order_[static_cast<std::size_t>(last) - k] = n;
-  }
+  Layout layout = lay_out(g, root, split);
+  if (layout.order.empty()) return false;  // not connected
+  order_ = std::move(layout.order);
+  segment_[0] = {layout.start[0], layout.start[1]};
+  segment_[1] = {layout.start[1], layout.start[2]};
+  tops_[0] = {layout.start[2], layout.start[3]};
+  tops_[1] = {layout.start[3], layout.start[4]};
+  body_part_ = std::move(layout.body_part);
+  joint_part_ = std::move(layout.joint_part);
   body_block_.resize(bodies);
   body_transfer_.resize(bodies);
   body_rhs_.resize(bodies);
@@ -193,31 +342,36 @@ using Row3 = FourDoubles;
 
 }  // namespace
 
-void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
-                        const std::vector<TreeJoint>& joints) {
+void TreeSystem::init_blocks(Span span, const std::vector<InverseMass>& inverse_mass,
+                             const std::vector<TreeJoint>& joints) {
   // The blocks of H; each becomes its reduced block's inverse when its node is eliminated. A
   // body of many children sums M and their terms; a chain link reads W = M^-1.
-  inverse_mass_ = inverse_mass.data();
-  for (std::size_t b = 0; b < body_block_.size(); ++b) {
-    if (body_child_[b] != kManyChildren) continue;
-    Mat6& block = body_block_[b];
-    block.setZero();
-    block.topLeftCorner<3, 3>().diagonal().setConstant(inverse_mass[b].linear);
-    block.bottomRightCorner<3, 3>() = inverse_mass[b].angular;
-    invert_body_block(block);
-  }
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    Eigen::Matrix3d d = -joints[j].gamma;
-    for (int r = joints[j].rows; r < 3; ++r) {
+  for (std::size_t k = span.begin; k < span.end; ++k) {
+    const TreeNode& node = order_[k];
+    if (!node.joint) {
+      if (body_child_[node.index] != kManyChildren) continue;
+      Mat6& block = body_block_[node.index];
+      block.setZero();
+      block.topLeftCorner<3, 3>().diagonal().setConstant(inverse_mass[node.index].linear);
+      block.bottomRightCorner<3, 3>() = inverse_mass[node.index].angular;
+      invert_body_block(block);
+      continue;
+    }
+    const TreeJoint& joint = joints[node.index];
+    Eigen::Matrix3d d = -joint.gamma;
+    for (int r = joint.rows; r < 3; ++r) {
       d.row(r).setZero();
       d.col(r).setZero();
       d(r, r) = -1.0;
     }
-    joint_block_[j] = d;
+    joint_block_[node.index] = d;
   }
+}
+
+void TreeSystem::eliminate(Span span, const InverseMass* inverse_mass,
+                           const std::vector<TreeJoint>& joints) {
   // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree.
-  const std::size_t n = order_.size();
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = span.begin; k < span.end; ++k) {
     const TreeNode& node = order_[k];
     if (node.joint) {
       if (under_link(node)) continue;  // folded with its link (eliminate_link)
@@ -231,7 +385,7 @@ void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
       continue;
     }
     if (is_link(node)) {
-      eliminate_link(k, joints);
+      eliminate_link(k, inverse_mass, joints);
       continue;
     }
     // B = M + sum of J_c^T (-D_c^-1) J_c over the children, positive definite.
@@ -246,6 +400,29 @@ void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
   }
 }
 
+void TreeSystem::factor_part(int part, const std::vector<InverseMass>& inverse_mass,
+                             const std::vector<TreeJoint>& joints) {
+  // The part's tops are reduced by its nodes (their children): their blocks start here, and
+  // part 0 starts the root's (its children's sums come in the root part).
+  init_blocks(segment_[part], inverse_mass, joints);
+  init_blocks(tops_[part], inverse_mass, joints);
+  if (part == 0) init_blocks(root_node(), inverse_mass, joints);
+  eliminate(segment_[part], inverse_mass.data(), joints);
+}
+
+void TreeSystem::factor_root(const std::vector<InverseMass>& inverse_mass,
+                             const std::vector<TreeJoint>& joints) {
+  inverse_mass_ = inverse_mass.data();
+  eliminate(root_part(), inverse_mass.data(), joints);
+}
+
+void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
+                        const std::vector<TreeJoint>& joints) {
+  factor_part(0, inverse_mass, joints);
+  factor_part(1, inverse_mass, joints);
+  factor_root(inverse_mass, joints);
+}
+
 // A chain link: a body b of at most one child joint c, eliminated together with c in joint
 // space. From b's rows, v_b = W (f_b - J_c^T l_c - J_p^T l_p) (W = M^-1; f_b = 0: a body's right
 // side starts at 0 and only a joint under a body of many children adds to it), so c's rows
@@ -256,9 +433,10 @@ void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
 // elimination along a chain, one dependent 3x3 inverse per link. Kept: E^-1 and, below a
 // parent, y. W is diag(w I, I_w) (the solver's mass record): its zero blocks are not
 // multiplied.
-void TreeSystem::eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints) {
+void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
+                                const std::vector<TreeJoint>& joints) {
   const TreeNode& node = order_[k];
-  const InverseMass& mass = inverse_mass_[node.index];
+  const InverseMass& mass = inverse_mass[node.index];
   const double w = mass.linear;
   // I_w is symmetric: its rows are its columns.
   const double* angular = mass.angular.data();
@@ -298,27 +476,50 @@ void TreeSystem::eliminate_link(std::size_t k, const std::vector<TreeJoint>& joi
 }
 
 template <int Columns>
-void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
-                               const std::vector<Eigen::Vector3d>* second,
-                               std::vector<Eigen::Matrix<double, 6, Columns>>& body_rhs,
-                               std::vector<Eigen::Matrix<double, 3, Columns>>& joint_rhs,
-                               std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
-                               std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const {
-  using JointColumns = Eigen::Matrix<double, 3, Columns>;
-  using BodyColumns = Eigen::Matrix<double, 6, Columns>;
+std::vector<Eigen::Matrix<double, 6, Columns>>& TreeSystem::body_rhs() {
+  if constexpr (Columns == 1) {
+    return body_rhs_;
+  } else {
+    return body_rhs_pair_;
+  }
+}
+
+template <int Columns>
+std::vector<Eigen::Matrix<double, 3, Columns>>& TreeSystem::joint_rhs() {
+  if constexpr (Columns == 1) {
+    return joint_rhs_;
+  } else {
+    return joint_rhs_pair_;
+  }
+}
+
+template <int Columns>
+void TreeSystem::init_rhs(Span span, const std::vector<TreeJoint>& joints,
+                          const std::vector<Eigen::Vector3d>* second) {
   // Only a body of many children has a right side of its own (a chain link's is folded into
   // its joints'): the others are neither read nor cleared.
-  for (std::size_t b = 0; b < body_rhs.size(); ++b) {
-    if (body_child_[b] == kManyChildren) body_rhs[b].setZero();
+  auto& bodies = body_rhs<Columns>();
+  auto& rhs = joint_rhs<Columns>();
+  for (std::size_t k = span.begin; k < span.end; ++k) {
+    const TreeNode& node = order_[k];
+    if (!node.joint) {
+      if (body_child_[node.index] == kManyChildren) bodies[node.index].setZero();
+      continue;
+    }
+    const std::size_t j = node.index;
+    rhs[j].col(0) = -joints[j].residual;
+    if constexpr (Columns == 2) rhs[j].col(1) = -(*second)[j];
+    for (int r = joints[j].rows; r < 3; ++r) rhs[j].row(r).setZero();
   }
-  for (std::size_t j = 0; j < joints.size(); ++j) {
-    joint_rhs[j].col(0) = -joints[j].residual;
-    if constexpr (Columns == 2) joint_rhs[j].col(1) = -(*second)[j];
-    for (int r = joints[j].rows; r < 3; ++r) joint_rhs[j].row(r).setZero();
-  }
-  const std::size_t n = order_.size();
+}
+
+template <int Columns>
+void TreeSystem::forward(Span span, const std::vector<TreeJoint>& joints) {
+  using JointColumns = Eigen::Matrix<double, 3, Columns>;
+  auto& body_rhs = this->body_rhs<Columns>();
+  auto& joint_rhs = this->joint_rhs<Columns>();
   // Leaves first. A link's child joint keeps g = E^-1 r_c in its right side.
-  for (std::size_t k = 0; k < n; ++k) {
+  for (std::size_t k = span.begin; k < span.end; ++k) {
     const TreeNode& node = order_[k];
     const bool root = node.parent < 0;
     if (node.joint) {
@@ -353,10 +554,18 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
           body_transfer_[node.index].transpose() * body_rhs[node.index];
     }
   }
-  dv.resize(body_block_.size());
-  dp.resize(joint_inverse_.size());
+}
+
+template <int Columns>
+void TreeSystem::backward(Span span, const std::vector<TreeJoint>& joints,
+                          std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                          std::vector<Eigen::Matrix<double, 3, Columns>>& dp) {
+  using JointColumns = Eigen::Matrix<double, 3, Columns>;
+  using BodyColumns = Eigen::Matrix<double, 6, Columns>;
+  const auto& body_rhs = this->body_rhs<Columns>();
+  const auto& joint_rhs = this->joint_rhs<Columns>();
   // Root first: every node from its parent's solution.
-  for (std::size_t k = n; k-- > 0;) {
+  for (std::size_t k = span.end; k-- > span.begin;) {
     const TreeNode& node = order_[k];
     const bool root = node.parent < 0;
     const std::uint32_t parent = root ? 0 : order_[static_cast<std::size_t>(node.parent)].index;
@@ -412,19 +621,81 @@ void TreeSystem::solve_columns(const std::vector<TreeJoint>& joints,
       dv[node.index].noalias() = body_block_[node.index] * rhs;
     }
   }
-  // The unknown of a joint is lambda = -dP.
-  for (JointColumns& p : dp) p = -p;
 }
+
+// The unknown of a joint is lambda = -dP: its impulse change is its negative, once no node
+// reads it any more (its children are in its own span or a later one).
+template <int Columns>
+void TreeSystem::negate_impulses(Span span,
+                                 std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const {
+  for (std::size_t k = span.begin; k < span.end; ++k) {
+    if (order_[k].joint) dp[order_[k].index] = -dp[order_[k].index];
+  }
+}
+
+template <int Columns>
+void TreeSystem::solve_up(int part, const std::vector<TreeJoint>& joints,
+                          const std::vector<Eigen::Vector3d>* second) {
+  // The part's tops take its nodes' right sides, and part 0 starts the root's (its children's
+  // sums come in the root part).
+  init_rhs<Columns>(segment_[part], joints, second);
+  init_rhs<Columns>(tops_[part], joints, second);
+  if (part == 0) init_rhs<Columns>(root_node(), joints, second);
+  forward<Columns>(segment_[part], joints);
+}
+
+template <int Columns>
+void TreeSystem::solve_root(const std::vector<TreeJoint>& joints,
+                            std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                            std::vector<Eigen::Matrix<double, 3, Columns>>& dp) {
+  forward<Columns>(root_part(), joints);
+  backward<Columns>(root_part(), joints, dv, dp);
+  negate_impulses<Columns>(root_node(), dp);
+}
+
+template <int Columns>
+void TreeSystem::solve_down(int part, const std::vector<TreeJoint>& joints,
+                            std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                            std::vector<Eigen::Matrix<double, 3, Columns>>& dp) {
+  backward<Columns>(segment_[part], joints, dv, dp);
+  negate_impulses<Columns>(segment_[part], dp);
+  negate_impulses<Columns>(tops_[part], dp);
+}
+
+template void TreeSystem::solve_up<1>(int, const std::vector<TreeJoint>&,
+                                      const std::vector<Eigen::Vector3d>*);
+template void TreeSystem::solve_up<2>(int, const std::vector<TreeJoint>&,
+                                      const std::vector<Eigen::Vector3d>*);
+template void TreeSystem::solve_root<1>(const std::vector<TreeJoint>&, std::vector<Vec6>&,
+                                        std::vector<Eigen::Vector3d>&);
+template void TreeSystem::solve_root<2>(const std::vector<TreeJoint>&, std::vector<Vec6x2>&,
+                                        std::vector<Vec3x2>&);
+template void TreeSystem::solve_down<1>(int, const std::vector<TreeJoint>&, std::vector<Vec6>&,
+                                        std::vector<Eigen::Vector3d>&);
+template void TreeSystem::solve_down<2>(int, const std::vector<TreeJoint>&, std::vector<Vec6x2>&,
+                                        std::vector<Vec3x2>&);
 
 void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
                        std::vector<Eigen::Vector3d>& dp) {
-  solve_columns<1>(joints, nullptr, body_rhs_, joint_rhs_, dv, dp);
+  dv.resize(body_block_.size());
+  dp.resize(joint_inverse_.size());
+  solve_up<1>(0, joints, nullptr);
+  solve_up<1>(1, joints, nullptr);
+  solve_root<1>(joints, dv, dp);
+  solve_down<1>(0, joints, dv, dp);
+  solve_down<1>(1, joints, dv, dp);
 }
 
 void TreeSystem::solve(const std::vector<TreeJoint>& joints,
                        const std::vector<Eigen::Vector3d>& second, std::vector<Vec6x2>& dv,
                        std::vector<Vec3x2>& dp) {
-  solve_columns<2>(joints, &second, body_rhs_pair_, joint_rhs_pair_, dv, dp);
+  dv.resize(body_block_.size());
+  dp.resize(joint_inverse_.size());
+  solve_up<2>(0, joints, &second);
+  solve_up<2>(1, joints, &second);
+  solve_root<2>(joints, dv, dp);
+  solve_down<2>(0, joints, dv, dp);
+  solve_down<2>(1, joints, dv, dp);
 }
 
 }  // namespace softstep::solver

@@ -63,22 +63,54 @@ class TreeSystem {
  public:
   // Orders the island's bodies and joints (each joint's body[] set). Returns false when the
   // graph has a loop or is not connected: it is not one tree, and this island is not solved
-  // here.
+  // here. An island of kSplitJoints joints or more is rooted at its centre and split in two
+  // parts (tree_system.cpp); the order depends on the island only, never on the threads.
   bool build(std::uint32_t bodies, const std::vector<TreeJoint>& joints);
+  static constexpr std::size_t kSplitJoints = 8;
+
+  // The elimination in three parts: parts 0 and 1, each a half of the tree below its root's
+  // children, touch disjoint nodes (two threads may run them at once), and the root part (the
+  // root and its children) joins them. The same operations in the same order whoever runs
+  // them: a factor is factor_part(0), factor_part(1), factor_root(); a solve is solve_up(0),
+  // solve_up(1), solve_root(), solve_down(0), solve_down(1). The two parts' calls may run at
+  // once; the root part's call must come after both parts' calls before it and before both
+  // after it. An island that is not split has all its nodes in part 0 and the root part.
+  bool split() const { return segment_[1].end > segment_[1].begin; }
+  // The part a body or joint belongs to (0 or 1): the root part's root is part 0's, its
+  // children the part they top. The caller's per-body and per-joint work follows it.
+  int body_part(std::uint32_t body) const { return body_part_[body]; }
+  int joint_part(std::uint32_t joint) const { return joint_part_[joint]; }
 
   // Factors H for these inverse masses (W = M^-1 per body: the solver keeps inverse masses,
   // and a chain link is eliminated with W, tree_system.cpp) and Jacobians and Gammas, leaves
   // first. The solves read inverse_mass's elements, as they read the joints: keep both as they
-  // were given here until the last solve with this factor.
+  // were given here until the last solve with this factor (factor_root keeps the pointer).
+  void factor_part(int part, const std::vector<InverseMass>& inverse_mass,
+                   const std::vector<TreeJoint>& joints);
+  void factor_root(const std::vector<InverseMass>& inverse_mass,
+                   const std::vector<TreeJoint>& joints);
+  // The solve with the last factor, Columns right sides: column 0 from the joints' residuals
+  // r, column 1 (Columns = 2) from `second` (one per joint). Results: the velocity change of
+  // every body (6 each: v then w) and the impulse change of every joint (3 each; padding rows
+  // 0), into dv and dp sized for the island's bodies and joints. The pass's time is its chain
+  // of dependent small products from the leaves to the root and back, which two independent
+  // columns share: the relax pass solves its velocities and the position projection together.
+  template <int Columns>
+  void solve_up(int part, const std::vector<TreeJoint>& joints,
+                const std::vector<Eigen::Vector3d>* second);
+  template <int Columns>
+  void solve_root(const std::vector<TreeJoint>& joints,
+                  std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                  std::vector<Eigen::Matrix<double, 3, Columns>>& dp);
+  template <int Columns>
+  void solve_down(int part, const std::vector<TreeJoint>& joints,
+                  std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                  std::vector<Eigen::Matrix<double, 3, Columns>>& dp);
+
+  // All parts on one thread.
   void factor(const std::vector<InverseMass>& inverse_mass, const std::vector<TreeJoint>& joints);
-  // With the last factor: the velocity change of every body (6 each: v then w) and the
-  // impulse change of every joint (3 each; padding rows 0) for the joints' residuals r.
   void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
              std::vector<Eigen::Vector3d>& dp);
-  // With the last factor, two right sides in one pass: column 0 from the joints' residuals r,
-  // column 1 from `second` (one per joint). The pass's time is its chain of dependent small
-  // products from the leaves to the root and back, which two independent columns share: the
-  // relax pass solves its velocities and the position projection together.
   void solve(const std::vector<TreeJoint>& joints, const std::vector<Eigen::Vector3d>& second,
              std::vector<Vec6x2>& dv, std::vector<Vec3x2>& dp);
   // factor, then solve.
@@ -91,13 +123,30 @@ class TreeSystem {
   std::size_t nodes() const { return order_.size(); }
 
  private:
+  // A stretch of the order: [begin, end).
+  struct Span {
+    std::size_t begin = 0, end = 0;
+  };
+  Span root_part() const { return {tops_[0].begin, order_.size()}; }  // tops and root
+  Span root_node() const { return {order_.size() - 1, order_.size()}; }
+  void init_blocks(Span span, const std::vector<InverseMass>& inverse_mass,
+                   const std::vector<TreeJoint>& joints);
+  void eliminate(Span span, const InverseMass* inverse_mass, const std::vector<TreeJoint>& joints);
   template <int Columns>
-  void solve_columns(const std::vector<TreeJoint>& joints,
-                     const std::vector<Eigen::Vector3d>* second,
-                     std::vector<Eigen::Matrix<double, 6, Columns>>& body_rhs,
-                     std::vector<Eigen::Matrix<double, 3, Columns>>& joint_rhs,
-                     std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
-                     std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const;
+  void init_rhs(Span span, const std::vector<TreeJoint>& joints,
+                const std::vector<Eigen::Vector3d>* second);
+  template <int Columns>
+  void forward(Span span, const std::vector<TreeJoint>& joints);
+  template <int Columns>
+  void backward(Span span, const std::vector<TreeJoint>& joints,
+                std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                std::vector<Eigen::Matrix<double, 3, Columns>>& dp);
+  template <int Columns>
+  void negate_impulses(Span span, std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const;
+  template <int Columns>
+  std::vector<Eigen::Matrix<double, 6, Columns>>& body_rhs();
+  template <int Columns>
+  std::vector<Eigen::Matrix<double, 3, Columns>>& joint_rhs();
 
   // A body of at most one child joint (a chain link), and a joint whose parent is one.
   bool is_link(const TreeNode& node) const {
@@ -106,9 +155,13 @@ class TreeSystem {
   bool under_link(const TreeNode& node) const {
     return node.parent >= 0 && is_link(order_[static_cast<std::size_t>(node.parent)]);
   }
-  void eliminate_link(std::size_t k, const std::vector<TreeJoint>& joints);
+  void eliminate_link(std::size_t k, const InverseMass* inverse_mass,
+                      const std::vector<TreeJoint>& joints);
 
+  // [part 0's nodes][part 1's][the root's children of part 0][of part 1][the root]
   std::vector<TreeNode> order_;
+  Span segment_[2], tops_[2];
+  std::vector<std::uint8_t> body_part_, joint_part_;
   // Scratch, sized once in build: per body of many children the reduced block, then its
   // inverse, and the transfer towards its parent joint (sized for every body; a chain link
   // uses inverse_mass_, link_e_inverse_ and link_y_ below instead); per joint the reduced block
