@@ -3,13 +3,15 @@
 // it must settle on one and try the other rarely; and a large world's first steps run on two
 // threads, as the profile's per-step thread count shows. The policy sees only the times given
 // here, so no assertion depends on this machine's speed.
+#include "thread_policy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <thread>
 
+#include "scenes/chain_scene.hpp"
 #include "scenes/grid_scene.hpp"
-#include "thread_policy.hpp"
 
 namespace softstep {
 namespace {
@@ -118,6 +120,27 @@ TEST(ThreadPolicy, ALargeStepRunsOnTwoThreadsAsTheProfileShows) {
   small.set_profiling(true);
   small.step(1.0 / 60.0);
   EXPECT_EQ(small.last_step_profile().threads, 1);
+}
+
+// The same threshold weighs an exactly solved joint (WorldSettings::solver) as five: the
+// 1,000-link whip's exact step (about 1 ms, its one island shared by two threads) goes to the
+// policy, which runs its first block on both threads; the iterative whip's step (2,000 bodies
+// and joints, 0.2 ms) stays on one.
+TEST(ThreadPolicy, AnExactlySolvedLongChainIsWorkEnoughToShare) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one core: nothing to share";
+  for (const SolverMode mode : {SolverMode::DirectForTrees, SolverMode::Iterative}) {
+    WorldSettings s;
+    s.threads = 2;
+    s.solver = mode;
+    World world(s);
+    scenes::ChainOptions o;
+    o.links = 1000;
+    scenes::build_chain(world, o);
+    world.set_profiling(true);
+    world.step(1.0 / 60.0);
+    EXPECT_EQ(world.last_step_profile().threads, mode == SolverMode::Iterative ? 1 : 2)
+        << solver_mode_name(mode);
+  }
 }
 
 }  // namespace

@@ -84,9 +84,14 @@ ThreadChoice step_threads(World::Impl& w) {
   static const int machine_cores = std::max(1, omp_get_num_procs());
   const int allowed = w.settings.threads == 0 ? machine_cores : w.settings.threads;
   if (w.settings.fixed_threads) return {allowed, false};  // the user's count, not the policy's
+  // An exactly solved joint (WorldSettings::solver) costs about five iterative ones, its rows
+  // counted: a factor and two solves of its island each sub-step (README, "Rigid means
+  // rigid"). The 1,000-link whip's exact step (about 1 ms, one island that two threads share)
+  // is work enough; its iterative one (0.2 ms) is not.
+  constexpr std::size_t kExactJointExtraWork = 4;
   // Sleeping bodies and joints are no work.
-  const std::size_t work =
-      w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3 + w.planned_contacts.points;
+  const std::size_t work = w.solver_bodies.movable.size() + w.plan.rows_per_pass / 3 +
+                           w.planned_contacts.points + kExactJointExtraWork * w.plan.tree_joints;
   if (allowed <= 1 || work < kMinWorkToShare) return {1, false};
   return {w.thread_policy.all_threads() ? allowed : 1, true};
 }
