@@ -15,9 +15,10 @@
 // joint space: along a chain the system is block-tridiagonal in the joints' 3x3 blocks, and a
 // link has no 6x6 block of its own.
 //
-// Double precision (a link's products on rows of three doubles, tree_system.cpp), one island
-// at a time in a fixed order, outside the kernels' width dispatch: the same bits at every SIMD
-// width and thread count.
+// Double precision (a link's products on rows of three doubles, tree_system.cpp), each island
+// in an order of its own (never the thread count's; its two halves may run on two threads at
+// once, split below), outside the kernels' width dispatch: the same bits at every SIMD width
+// and thread count.
 #pragma once
 
 #include <Eigen/Core>
