@@ -616,8 +616,13 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeRelax)) {
         stage(Stage::Relax, [&] {
-          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx, {.with_bias = false},
-                       share);
+          // The next sub-step's solve pass folded into this one where nothing but the
+          // velocity integration changes the tree islands' velocities before it.
+          const bool fold = sub + 1 < s.substeps && !has_contacts && !refreshes_before(sub + 1) &&
+                            !joints_run(PlanStage::Solve) && !joints_run(PlanStage::WarmStart);
+          w.trees.pass(
+              w.joints, w.bodies, w.solver_bodies, solver, ctx,
+              {.with_bias = false, .fold_next = fold, .gravity = gravity, .torque = torque}, share);
           solver::team_barrier(share);
         });
       }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 #include "solver/four_doubles.hpp"
 #include "solver/team.hpp"
@@ -148,21 +149,28 @@ void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen:
   }
 }
 
-// fill_jacobians, and J v for the bodies' velocities va and vb. A ball joint's J v comes from
-// its columns in registers: read back from the block just stored, each column's two-double
-// load waited for the two single stores it spans, which a store cannot forward (14 % of
-// solve_island's samples on the whip, Zen 4).
-[[gnu::always_inline]] inline FourDoubles fill_jacobians_times(
-    const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
-    const Eigen::Vector3d& separation, const Vec6& va, const Vec6& vb, TreeJoint& t) {
+// fill_jacobians, and J v for N pairs of the bodies' velocities (va[i], vb[i]). A ball joint's
+// J v comes from its columns in registers: read back from the block just stored, each column's
+// two-double load waited for the two single stores it spans, which a store cannot forward (14 %
+// of solve_island's samples on the whip, Zen 4).
+template <int N>
+[[gnu::always_inline]] inline void fill_jacobians_times(const JointSlot& j,
+                                                        const Eigen::Vector3d& r_a,
+                                                        const Eigen::Vector3d& r_b,
+                                                        const Eigen::Vector3d& separation,
+                                                        const Vec6 (&va)[N], const Vec6 (&vb)[N],
+                                                        TreeJoint& t, FourDoubles (&jv)[N]) {
   if (j.type == JointType::Ball) {
     const BallColumns rows_a = ball_columns(-1.0, r_a), rows_b = ball_columns(1.0, r_b);
     store_columns(rows_a, t.jacobian[0]);
     store_columns(rows_b, t.jacobian[1]);
-    return columns_times(rows_a, va) + columns_times(rows_b, vb);
+    for (int i = 0; i < N; ++i) jv[i] = columns_times(rows_a, va[i]) + columns_times(rows_b, vb[i]);
+    return;
   }
   fill_jacobians(j, r_a, r_b, separation, t);
-  return times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
+  for (int i = 0; i < N; ++i) {
+    jv[i] = times_vector(t.jacobian[0], va[i]) + times_vector(t.jacobian[1], vb[i]);
+  }
 }
 
 // More projections run where the first left a joint open by more than this: J dx = -C is
@@ -285,6 +293,9 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     island.dp.resize(island.joints.size());
     island.dv_pair.resize(island.bodies.size());
     island.dp_pair.resize(island.joints.size());
+    island.dv_triple.resize(island.bodies.size());
+    island.dp_triple.resize(island.joints.size());
+    island.next_change.resize(island.joints.size());
     island.error.resize(island.joints.size());
     island.held_back.resize(island.joints.size());
     island.kept.resize(island.joints.size());
@@ -349,7 +360,8 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
       lanes.integrate_velocities_of(sb, island.parts[p].records, ctx, whole.gravity, whole.damping,
                                     whole.torque);
     }
-    crew.sync();  // a joint between the parts reads both bodies' velocities
+    // After a folding relax pass the solve pass only hands over impulses: no barrier for it.
+    if (!island.folded) crew.sync();  // a joint between the parts reads both bodies' velocities
     solve_island(island, joints, bodies, sb, lanes, ctx,
                  {.with_bias = true,
                   .step_start = sub == 0,
@@ -362,7 +374,12 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
     if (whole.relax) {
       crew.sync();  // and both bodies' positions
       solve_island(island, joints, bodies, sb, lanes, ctx,
-                   {.with_bias = false, .add_impulses = last}, crew);
+                   {.with_bias = false,
+                    .add_impulses = last,
+                    .fold_next = !last,
+                    .gravity = whole.gravity,
+                    .torque = whole.torque},
+                   crew);
     }
   }
 }
@@ -375,6 +392,25 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     for (int p = crew.first_part; p < crew.end_part; ++p) work(island.parts[p], p);
   };
   const bool with_bias = which.with_bias;
+  // Column `column` of the impulse changes dp into the part's joints' lanes.
+  const auto hand_over = [&](const Part& part, const auto& dp, int column) {
+    for (const std::uint32_t k : part.joints) {
+      const float delta[3] = {static_cast<float>(dp[k](0, column)),
+                              static_cast<float>(dp[k](1, column)),
+                              static_cast<float>(dp[k](2, column))};
+      lanes.add_impulses(island.joints[k], delta);
+    }
+  };
+  if (with_bias && island.folded) {
+    // The last relax pass solved this sub-step's velocity change (Pass::fold_next): its
+    // impulses are all that is left. (The lead clears the flag in the next relax pass, after
+    // every thread has read it.)
+    if (which.add_impulses)
+      each_part([&](Part& part, int) { hand_over(part, island.dp_triple, 2); });
+    return;
+  }
+  // A relax pass that folds the next sub-step's solve pass in solves three right sides.
+  const bool fold = !with_bias && which.fold_next;
   // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
   // the bodies have moved only by the position projection since. (The lead writes the flags
   // below in the root part, after every thread has read them.)
@@ -392,6 +428,19 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     Anchors n{pa.dq * island.anchor_a[k], pb.dq * island.anchor_b[k], {}};
     n.separation = island.offset[k] + (pb.dp - pa.dp) + (n.r_b - n.r_a);
     return n;
+  };
+  // What the next sub-step's velocity integration adds to a body (island-local index `local`,
+  // -1 for one that does not move; `record` its solver record) before any damping: gravity and
+  // applied forces, applied torques (simd/body_integration.hpp), for a folding relax pass.
+  const double h = double(ctx.h);
+  const auto next_change = [&](std::int32_t local, std::int32_t record) {
+    Vec6 change = Vec6::Zero();
+    if (local < 0) return change;
+    const simd::ForceRecord& f = sb.force[static_cast<std::size_t>(record)];
+    for (int k = 0; k < 3 && which.gravity; ++k) change[k] = h * double(f.gravity[k]);
+    for (int k = 0; k < 3 && which.torque; ++k)
+      change[3 + k] = h * double(f.angular_acceleration[k]);
+    return change;
   };
   // The rows, the part's share of the factor, and its half of the solve up to the root.
   each_part([&](Part& part, int p) {
@@ -425,10 +474,22 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
       TreeJoint& t = island.rows[k];
       Eigen::Vector3d c = violation(j, separation);
-      // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's.
-      const FourDoubles jv = reuse_factor
-                                 ? times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb)
-                                 : fill_jacobians_times(j, r_a, r_b, separation, va, vb, t);
+      FourDoubles jv;
+      if (reuse_factor) {
+        // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's.
+        jv = times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
+      } else if (fold) {
+        const Vec6 a[2] = {va, next_change(t.body[0], ia)}, b[2] = {vb, next_change(t.body[1], ib)};
+        FourDoubles products[2];
+        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products);
+        jv = products[0];
+        store3(island.next_change[k].data(), products[1]);
+      } else {
+        const Vec6 a[1] = {va}, b[1] = {vb};
+        FourDoubles products[1];
+        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products);
+        jv = products[0];
+      }
       if (!with_bias) {
         // What the projection removes: all the violation this step's own motion made (the
         // drift of links turning fast, which the velocity solve cannot see), and of what was
@@ -460,40 +521,42 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     }
     if (!reuse_factor) island.system.factor_part(p, island.inverse_mass, island.rows);
     if (with_bias) {
-      island.system.solve_up<1>(p, island.rows, nullptr);
+      island.system.solve_up<1>(p, island.rows, {});
+    } else if (fold) {
+      island.system.solve_up<3>(p, island.rows, {&island.error, &island.next_change});
     } else {
-      island.system.solve_up<2>(p, island.rows, &island.error);
+      island.system.solve_up<2>(p, island.rows, {&island.error});
     }
   });
   crew.sync();
   if (crew.lead) {
     island.relax_factored = !with_bias;
     island.anchors_current = false;
+    if (!with_bias) island.folded = fold;
     if (!reuse_factor) island.system.factor_root(island.inverse_mass, island.rows);
     if (with_bias) {
       island.system.solve_root<1>(island.rows, island.dv, island.dp);
+    } else if (fold) {
+      island.system.solve_root<3>(island.rows, island.dv_triple, island.dp_triple);
     } else {
       island.system.solve_root<2>(island.rows, island.dv_pair, island.dp_pair);
     }
   }
   crew.sync();
-  // The velocity changes (column 0 of dv) into the part's bodies' velocities and the impulse
-  // changes (column 0 of dp) into its joints' lanes, read where the solve left them.
+  // The velocity changes (column 0 of dv; a folding relax pass's column 2 too) into the part's
+  // bodies' velocities and the impulse changes (column 0 of dp) into its joints' lanes, read
+  // where the solve left them.
   const auto apply = [&](const Part& part, const auto& dv, const auto& dp) {
     for (const std::uint32_t b : part.bodies) {
       simd::VelocityRecord& v = sb.velocity[island.bodies[b] + 1];
-      const Vec6 now = velocity_of(v) + dv[b].col(0);
+      Vec6 now = velocity_of(v) + dv[b].col(0);
+      if constexpr (std::decay_t<decltype(dv[b])>::ColsAtCompileTime == 3) now += dv[b].col(2);
       for (int k = 0; k < 3; ++k) {
         v.v[k] = static_cast<float>(now[k]);
         v.w[k] = static_cast<float>(now[3 + k]);
       }
     }
-    for (std::size_t i = 0; i < part.joints.size() && which.add_impulses; ++i) {
-      const std::uint32_t k = part.joints[i];
-      const float delta[3] = {static_cast<float>(dp[k](0, 0)), static_cast<float>(dp[k](1, 0)),
-                              static_cast<float>(dp[k](2, 0))};
-      lanes.add_impulses(island.joints[k], delta);
-    }
+    if (which.add_impulses) hand_over(part, dp, 0);
   };
   if (with_bias) {
     each_part([&](Part& part, int p) {
@@ -503,12 +566,19 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     return;
   }
   // The velocities and the position projection together (move_positions, below).
-  each_part([&](Part& part, int p) {
-    island.system.solve_down<2>(p, island.rows, island.dv_pair, island.dp_pair);
-    apply(part, island.dv_pair, island.dp_pair);
-    move_positions(part.bodies, island.bodies, sb,
-                   [&](std::size_t b) { return island.dv_pair[b].col(1); });
-  });
+  const auto relax_down = [&](auto& dv, auto& dp) {
+    constexpr int kColumns = std::decay_t<decltype(dv[0])>::ColsAtCompileTime;
+    each_part([&](Part& part, int p) {
+      island.system.solve_down<kColumns>(p, island.rows, dv, dp);
+      apply(part, dv, dp);
+      move_positions(part.bodies, island.bodies, sb, [&](std::size_t b) { return dv[b].col(1); });
+    });
+  };
+  if (fold) {
+    relax_down(island.dv_triple, island.dp_triple);
+  } else {
+    relax_down(island.dv_pair, island.dp_pair);
+  }
   // Where the projection left a joint open by more than kProjectionTolerance (besides what is
   // held back), Newton steps: the rows again at the projected positions, a new factor (the
   // next solve pass reuses it), and J dx = -C once more. The whips need them where links turn
@@ -539,7 +609,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         fill_jacobians(joints[island.joints[k]], now.r_a, now.r_b, now.separation, island.rows[k]);
       }
       island.system.factor_part(p, island.inverse_mass, island.rows);
-      island.system.solve_up<1>(p, island.rows, nullptr);
+      island.system.solve_up<1>(p, island.rows, {});
     });
     crew.sync();
     if (crew.lead) {

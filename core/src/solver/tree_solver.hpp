@@ -11,7 +11,10 @@
 // moved) at most max_correction_speed * h per sub-step. Without it the exact velocities
 // still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per sub-step as it
 // cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a joint 0.19 m; with
-// the whole of C bounded, 2.1 cm.
+// the whole of C bounded, 2.1 cm. Where nothing but the velocity integration changes the
+// velocities between a relax pass and the next sub-step's solve pass (an exact-only world
+// without contacts), the relax pass also solves what that solve pass would (Pass::fold_next),
+// and the solve pass runs only at a step's first sub-step.
 //
 // Handles rigid ball joints and rigid distance joints. An island (movable bodies linked by
 // joints) with any other joint (soft, free, limited, revolute, prismatic, weld, ...), with
@@ -69,6 +72,15 @@ class TreeSolver {
     // Adds the pass's impulse changes to the joints' lane impulses (whole_substeps: the last
     // sub-step's passes only).
     bool add_impulses = true;
+    // A relax pass that also solves, with its factor, what the next sub-step's velocity
+    // integration will add (gravity and applied forces: `gravity`; applied torques: `torque`)
+    // and adds that velocity change's constraint response now: the next sub-step's solve pass
+    // then has nothing left to do but hand over its impulses. For a sub-step whose velocities
+    // only the integration changes before its solve pass (no contact, no Gauss-Seidel pass over
+    // these joints, no inertia refresh: step.cpp); the velocities it leaves are then not those
+    // of a sub-step's end, so never for a step's last sub-step.
+    bool fold_next = false;
+    bool gravity = false, torque = false;
   };
   // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
   // joints' lane impulses; the relax pass also moves the bodies' positions. An island that is
@@ -129,6 +141,13 @@ class TreeSolver {
     bool anchors_current = false;
     std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
     std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
+    // A folding relax pass's (Pass::fold_next): the same and the next sub-step's velocity
+    // change and impulse; per joint the right side of that third column, J of that change.
+    std::vector<Eigen::Matrix<double, 6, 3>> dv_triple;
+    std::vector<Eigen::Matrix<double, 3, 3>> dp_triple;
+    std::vector<Eigen::Vector3d> next_change;
+    // The last relax pass folded the next sub-step's solve pass in (Pass::fold_next).
+    bool folded = false;
     // Per part, the largest joint gap the relax pass's last check left (its Newton steps).
     double worst[2] = {0.0, 0.0};
     TreeSystem system;

@@ -224,12 +224,10 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
   joint_part_ = std::move(layout.joint_part);
   body_block_.resize(bodies);
   body_transfer_.resize(bodies);
-  body_rhs_.resize(bodies);
-  body_rhs_pair_.resize(bodies);
+  std::apply([&](auto&... sides) { (sides.resize(bodies), ...); }, body_rhs_);
   joint_block_.resize(joints.size());
   joint_inverse_.resize(joints.size());
-  joint_rhs_.resize(joints.size());
-  joint_rhs_pair_.resize(joints.size());
+  std::apply([&](auto&... sides) { (sides.resize(joints.size()), ...); }, joint_rhs_);
   body_child_.assign(bodies, kNoChild);
   body_child_side_.assign(bodies, 0);
   link_e_inverse_.resize(bodies);
@@ -477,25 +475,16 @@ void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
 
 template <int Columns>
 std::vector<Eigen::Matrix<double, 6, Columns>>& TreeSystem::body_rhs() {
-  if constexpr (Columns == 1) {
-    return body_rhs_;
-  } else {
-    return body_rhs_pair_;
-  }
+  return std::get<Columns - 1>(body_rhs_);
 }
 
 template <int Columns>
 std::vector<Eigen::Matrix<double, 3, Columns>>& TreeSystem::joint_rhs() {
-  if constexpr (Columns == 1) {
-    return joint_rhs_;
-  } else {
-    return joint_rhs_pair_;
-  }
+  return std::get<Columns - 1>(joint_rhs_);
 }
 
 template <int Columns>
-void TreeSystem::init_rhs(Span span, const std::vector<TreeJoint>& joints,
-                          const std::vector<Eigen::Vector3d>* second) {
+void TreeSystem::init_rhs(Span span, const std::vector<TreeJoint>& joints, const MoreSides& more) {
   // Only a body of many children has a right side of its own (a chain link's is folded into
   // its joints'): the others are neither read nor cleared.
   auto& bodies = body_rhs<Columns>();
@@ -508,7 +497,7 @@ void TreeSystem::init_rhs(Span span, const std::vector<TreeJoint>& joints,
     }
     const std::size_t j = node.index;
     rhs[j].col(0) = -joints[j].residual;
-    if constexpr (Columns == 2) rhs[j].col(1) = -(*second)[j];
+    for (int c = 1; c < Columns; ++c) rhs[j].col(c) = -(*more[static_cast<std::size_t>(c - 1)])[j];
     for (int r = joints[j].rows; r < 3; ++r) rhs[j].row(r).setZero();
   }
 }
@@ -634,13 +623,12 @@ void TreeSystem::negate_impulses(Span span,
 }
 
 template <int Columns>
-void TreeSystem::solve_up(int part, const std::vector<TreeJoint>& joints,
-                          const std::vector<Eigen::Vector3d>* second) {
+void TreeSystem::solve_up(int part, const std::vector<TreeJoint>& joints, const MoreSides& more) {
   // The part's tops take its nodes' right sides, and part 0 starts the root's (its children's
   // sums come in the root part).
-  init_rhs<Columns>(segment_[part], joints, second);
-  init_rhs<Columns>(tops_[part], joints, second);
-  if (part == 0) init_rhs<Columns>(root_node(), joints, second);
+  init_rhs<Columns>(segment_[part], joints, more);
+  init_rhs<Columns>(tops_[part], joints, more);
+  if (part == 0) init_rhs<Columns>(root_node(), joints, more);
   forward<Columns>(segment_[part], joints);
 }
 
@@ -662,25 +650,25 @@ void TreeSystem::solve_down(int part, const std::vector<TreeJoint>& joints,
   negate_impulses<Columns>(tops_[part], dp);
 }
 
-template void TreeSystem::solve_up<1>(int, const std::vector<TreeJoint>&,
-                                      const std::vector<Eigen::Vector3d>*);
-template void TreeSystem::solve_up<2>(int, const std::vector<TreeJoint>&,
-                                      const std::vector<Eigen::Vector3d>*);
-template void TreeSystem::solve_root<1>(const std::vector<TreeJoint>&, std::vector<Vec6>&,
-                                        std::vector<Eigen::Vector3d>&);
-template void TreeSystem::solve_root<2>(const std::vector<TreeJoint>&, std::vector<Vec6x2>&,
-                                        std::vector<Vec3x2>&);
-template void TreeSystem::solve_down<1>(int, const std::vector<TreeJoint>&, std::vector<Vec6>&,
-                                        std::vector<Eigen::Vector3d>&);
-template void TreeSystem::solve_down<2>(int, const std::vector<TreeJoint>&, std::vector<Vec6x2>&,
-                                        std::vector<Vec3x2>&);
+#define SOFTSTEP_TREE_SOLVE_COLUMNS(C)                                                         \
+  template void TreeSystem::solve_up<C>(int, const std::vector<TreeJoint>&, const MoreSides&); \
+  template void TreeSystem::solve_root<C>(const std::vector<TreeJoint>&,                       \
+                                          std::vector<Eigen::Matrix<double, 6, C>>&,           \
+                                          std::vector<Eigen::Matrix<double, 3, C>>&);          \
+  template void TreeSystem::solve_down<C>(int, const std::vector<TreeJoint>&,                  \
+                                          std::vector<Eigen::Matrix<double, 6, C>>&,           \
+                                          std::vector<Eigen::Matrix<double, 3, C>>&);
+SOFTSTEP_TREE_SOLVE_COLUMNS(1)
+SOFTSTEP_TREE_SOLVE_COLUMNS(2)
+SOFTSTEP_TREE_SOLVE_COLUMNS(3)
+#undef SOFTSTEP_TREE_SOLVE_COLUMNS
 
 void TreeSystem::solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
                        std::vector<Eigen::Vector3d>& dp) {
   dv.resize(body_block_.size());
   dp.resize(joint_inverse_.size());
-  solve_up<1>(0, joints, nullptr);
-  solve_up<1>(1, joints, nullptr);
+  solve_up<1>(0, joints, {});
+  solve_up<1>(1, joints, {});
   solve_root<1>(joints, dv, dp);
   solve_down<1>(0, joints, dv, dp);
   solve_down<1>(1, joints, dv, dp);
@@ -691,8 +679,8 @@ void TreeSystem::solve(const std::vector<TreeJoint>& joints,
                        std::vector<Vec3x2>& dp) {
   dv.resize(body_block_.size());
   dp.resize(joint_inverse_.size());
-  solve_up<2>(0, joints, &second);
-  solve_up<2>(1, joints, &second);
+  solve_up<2>(0, joints, {&second});
+  solve_up<2>(1, joints, {&second});
   solve_root<2>(joints, dv, dp);
   solve_down<2>(0, joints, dv, dp);
   solve_down<2>(1, joints, dv, dp);

@@ -22,7 +22,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
+#include <tuple>
 #include <vector>
 
 namespace softstep::solver {
@@ -32,6 +34,9 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Jac = Eigen::Matrix<double, 3, 6>;  // a joint's rows against one body (v, then w)
 using Vec6x2 = Eigen::Matrix<double, 6, 2>;
 using Vec3x2 = Eigen::Matrix<double, 3, 2>;
+// The right sides of a solve beyond its first (column 0, from the joints' residuals): column c
+// from more[c - 1], one per joint.
+using MoreSides = std::array<const std::vector<Eigen::Vector3d>*, 2>;
 
 // A rigid body's M^-1 = diag(linear I, angular): its inverse mass and its world inverse
 // inertia, symmetric (a chain link reads its rows as its columns).
@@ -90,15 +95,15 @@ class TreeSystem {
                    const std::vector<TreeJoint>& joints);
   void factor_root(const std::vector<InverseMass>& inverse_mass,
                    const std::vector<TreeJoint>& joints);
-  // The solve with the last factor, Columns right sides: column 0 from the joints' residuals
-  // r, column 1 (Columns = 2) from `second` (one per joint). Results: the velocity change of
+  // The solve with the last factor, Columns (1 to 3) right sides: column 0 from the joints'
+  // residuals r, the others from `more`. Results: the velocity change of
   // every body (6 each: v then w) and the impulse change of every joint (3 each; padding rows
   // 0), into dv and dp sized for the island's bodies and joints. The pass's time is its chain
   // of dependent small products from the leaves to the root and back, which two independent
-  // columns share: the relax pass solves its velocities and the position projection together.
+  // columns share: the relax pass solves its velocities and the position projection together
+  // (and the next sub-step's velocity change, tree_solver.hpp).
   template <int Columns>
-  void solve_up(int part, const std::vector<TreeJoint>& joints,
-                const std::vector<Eigen::Vector3d>* second);
+  void solve_up(int part, const std::vector<TreeJoint>& joints, const MoreSides& more);
   template <int Columns>
   void solve_root(const std::vector<TreeJoint>& joints,
                   std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
@@ -134,8 +139,7 @@ class TreeSystem {
                    const std::vector<TreeJoint>& joints);
   void eliminate(Span span, const InverseMass* inverse_mass, const std::vector<TreeJoint>& joints);
   template <int Columns>
-  void init_rhs(Span span, const std::vector<TreeJoint>& joints,
-                const std::vector<Eigen::Vector3d>* second);
+  void init_rhs(Span span, const std::vector<TreeJoint>& joints, const MoreSides& more);
   template <int Columns>
   void forward(Span span, const std::vector<TreeJoint>& joints);
   template <int Columns>
@@ -170,12 +174,14 @@ class TreeSystem {
   // hand-ordered 3x3 arithmetic (tree_system.cpp says why).
   std::vector<Mat6> body_block_;                            // B, then B^-1 once eliminated
   std::vector<Eigen::Matrix<double, 6, 3>> body_transfer_;  // B^-1 J^T towards the parent
-  std::vector<Vec6> body_rhs_;
-  std::vector<Vec6x2> body_rhs_pair_;
+  template <int Columns>
+  using BodySides = std::vector<Eigen::Matrix<double, 6, Columns>>;
+  template <int Columns>
+  using JointSides = std::vector<Eigen::Matrix<double, 3, Columns>>;
+  std::tuple<BodySides<1>, BodySides<2>, BodySides<3>> body_rhs_;  // per number of columns
   std::vector<Eigen::Matrix3d> joint_block_;    // D, the reduced joint block
   std::vector<Eigen::Matrix3d> joint_inverse_;  // D^-1
-  std::vector<Eigen::Vector3d> joint_rhs_;
-  std::vector<Vec3x2> joint_rhs_pair_;
+  std::tuple<JointSides<1>, JointSides<2>, JointSides<3>> joint_rhs_;
   // Per body its one child joint (a chain link), kNoChild (a leaf) or kManyChildren; and the
   // side of that joint at the body. A body of at most one child is eliminated with its child
   // joint in joint space (tree_system.cpp, eliminate_link).
