@@ -620,9 +620,13 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
           // velocity integration changes the tree islands' velocities before it.
           const bool fold = sub + 1 < s.substeps && !has_contacts && !refreshes_before(sub + 1) &&
                             !joints_run(PlanStage::Solve) && !joints_run(PlanStage::WarmStart);
-          w.trees.pass(
-              w.joints, w.bodies, w.solver_bodies, solver, ctx,
-              {.with_bias = false, .fold_next = fold, .gravity = gravity, .torque = torque}, share);
+          w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
+                       {.with_bias = false,
+                        .fold_next = fold,
+                        .gravity = gravity,
+                        .torque = torque,
+                        .check = sub + 1 == s.substeps},
+                       share);
           solver::team_barrier(share);
         });
       }

@@ -81,6 +81,12 @@ class TreeSolver {
     // of a sub-step's end, so never for a step's last sub-step.
     bool fold_next = false;
     bool gravity = false, torque = false;
+    // A relax pass that measures the joints after its projection and runs Newton steps where
+    // one is still open by more than a tolerance (tree_solver.cpp). Needed at a step's last
+    // sub-step only: at the others the next sub-step's projection takes out what is left with
+    // the drift of its own motion (and the check's pass over the joints and, shared, its two
+    // barriers are saved).
+    bool check = true;
   };
   // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
   // joints' lane impulses; the relax pass also moves the bodies' positions. An island that is
