@@ -447,7 +447,11 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   each_part([&](Part& part, int p) {
     // W = M^-1 per body from the solver's mass record (the geometric-stiffness inertia
     // included), so the exact pass and the Gauss-Seidel passes solve with the same masses.
-    for (std::size_t i = 0; i < part.bodies.size() && !reuse_factor; ++i) {
+    // Read by a solve pass that factors: a relax pass runs after its sub-step's solve pass,
+    // with no mass record changed between (an inertia refresh comes before a sub-step's
+    // velocities; where one does, that solve pass factors), and a folded solve pass follows a
+    // relax pass with none before it either (step.cpp).
+    for (std::size_t i = 0; i < part.bodies.size() && with_bias && !reuse_factor; ++i) {
       const std::uint32_t b = part.bodies[i];
       const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
       InverseMass& w = island.inverse_mass[b];
