@@ -416,8 +416,6 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   // the bodies have moved only by the position projection since. (The lead writes the flags
   // below in the root part, after every thread has read them.)
   const bool reuse_factor = with_bias && which.reuse_relax_factor && island.relax_factored;
-  // The last relax pass's check measured the joints where the bodies still are.
-  const bool measured = reuse_factor && island.anchors_current;
   const double bias_rate = with_bias ? double(ctx.rigid.bias_rate) : 0.0;
   const double bound = double(ctx.max_correction_speed);
   const double step = bound * double(ctx.h);
@@ -474,7 +472,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     for (const std::uint32_t k : part.joints) {
       const JointSlot& j = joints[island.joints[k]];
       const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
-      const auto [r_a, r_b, separation] = measured ? island.anchors[k] : anchors_now(k);
+      const auto [r_a, r_b, separation] = anchors_now(k);
       const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
       const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
       TreeJoint& t = island.rows[k];
@@ -536,7 +534,6 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   crew.sync();
   if (crew.lead) {
     island.relax_factored = !with_bias;
-    island.anchors_current = false;
     if (!with_bias) island.folded = fold;
     if (!reuse_factor) island.system.factor_root(island.inverse_mass, island.rows);
     if (with_bias) {
@@ -605,11 +602,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       island.worst[p] = worst;
     });
     crew.sync();
-    if (std::max(island.worst[0], island.worst[1]) <= kProjectionTolerance) {
-      // Until the bodies move: the next solve pass reads them.
-      if (crew.lead) island.anchors_current = true;
-      return;
-    }
+    if (std::max(island.worst[0], island.worst[1]) <= kProjectionTolerance) return;
     each_part([&](Part& part, int p) {
       for (const std::uint32_t k : part.joints) {
         const Anchors& now = island.anchors[k];

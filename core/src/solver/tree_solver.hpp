@@ -67,7 +67,8 @@ class TreeSolver {
     // A solve pass whose masses have not changed since this step's last relax pass: that
     // pass's factor is solved again (with its Jacobians; C and J v are new) instead of a new
     // one. The bodies moved only by the position projection since, a Jacobian change of the
-    // order of the remaining joint error; it saves one factor per sub-step but the first.
+    // order of what the projection left; it saves one factor per sub-step but the first where
+    // the solve pass is not folded into the relax pass before it (fold_next).
     bool reuse_relax_factor = false;
     // Adds the pass's impulse changes to the joints' lane impulses (whole_substeps: the last
     // sub-step's passes only).
@@ -141,10 +142,9 @@ class TreeSolver {
     // orientation, and the step-start offset from body a to body b.
     std::vector<Eigen::Vector3d> anchor_a, anchor_b, offset;
     // Per joint, its anchors turned to where the bodies are and their separation, as the
-    // relax pass's check measured them after its projection; current (anchors_current) until
-    // the bodies move, so that the next sub-step's solve pass does not turn them again.
+    // relax pass's check measured them after its projection (its Newton step's rows). The
+    // check runs at a step's last sub-step, after which the next pass turns them again.
     std::vector<Anchors> anchors;
-    bool anchors_current = false;
     std::vector<Vec6x2> dv_pair;  // the relax pass's: velocity change, position change
     std::vector<Vec3x2> dp_pair;  // its impulse change, position multiplier
     // A folding relax pass's (Pass::fold_next): the same and the next sub-step's velocity
