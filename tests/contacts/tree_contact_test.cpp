@@ -125,13 +125,13 @@ TEST(TreeContacts, ChainLyingOnTheGroundRestsWithRigidJointsAndCarriesItsWeight)
 // A relax pass folds the next sub-step's solve pass in (TreeSolver::Pass::fold_next): with its
 // own factor it solves for the velocity change the next sub-step's integration will add
 // (gravity here), which is what that solve pass would solve with the same factor; only the
-// solve pass's bias (its joints are within 1e-6 m after the projection) and float rounding
-// differ. A step given contacts keeps every solve pass (step.cpp), so two worlds with the same
-// chain (20 links of 1 kg, 100 kg at the end, released horizontally, solved exactly) and, apart
-// from it, a ball on the ground, stepped with and without that ball's contact, move the chain
-// the same way. Measured after 1 s: 2.9e-6 m apart; with the gravity left out of the folded
-// column (positions then move along velocities the joints do not allow, which only the
-// projection takes back) 7.5e-3 m. Not 0: the two worlds took different paths.
+// solve pass's bias (on what the last projection left) and float rounding differ. A step given
+// contacts keeps every solve pass (step.cpp), so two worlds with the same chain (20 links of 1 kg,
+// 100 kg at the end, released horizontally, solved exactly) and, apart from it, a ball on the
+// ground, stepped with and without that ball's contact, move the chain the same way. Measured after
+// 1 s: 2.9e-6 m apart; with the gravity left out of the folded column (positions then move along
+// velocities the joints do not allow, which only the projection takes back) 7.5e-3 m. Not 0: the
+// two worlds took different paths.
 TEST(TreeContacts, AFoldedSolvePassMovesTheChainAsTheSolvePassItReplaces) {
   WorldSettings s = settings_without_sleep();
   s.solver = SolverMode::DirectForTrees;

@@ -582,8 +582,8 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     relax_down(island.dv_pair, island.dp_pair);
   }
   // Where the projection left a joint open by more than kProjectionTolerance (besides what is
-  // held back), Newton steps: the rows again at the projected positions, a new factor (the
-  // next solve pass reuses it), and J dx = -C once more. The whips need them where links turn
+  // held back), Newton steps: the rows again at the projected positions, a new factor, and
+  // J dx = -C once more. The whips need them where links turn
   // fast: the 100-link whip cracking at 4 sub-steps (160 rad/s) kept 7 mm after one
   // projection, 0.8 mm after two more with the same factor, 1e-6 m after two Newton steps.
   // Only where the pass asks (a step's last sub-step): before, the next sub-step's projection
