@@ -14,10 +14,43 @@
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include <Eigen/Core>
+#include <cmath>
+#if SOFTSTEP_USE_FMA
+#include <immintrin.h>
+#endif
 
 namespace softstep {
 
 using FourDoubles = double __attribute__((vector_size(32)));
+
+// a * b + c in one rounding where the build fuses multiply-adds (SOFTSTEP_USE_FMA, as the
+// kernels do: simd/lanes.hpp), else in two. Only the exact tree solve uses these (its bits
+// are its own, the same at every width and thread count in a build); the lanes that must
+// give Eigen's bits (lane_solver.cpp, contact_solver.cpp) keep the plain operators. A fused
+// product is one instruction where the unfused one is two, and one latency where its
+// dependent chains (a link's 3x3 inverse, a solve's pass along a chain) had two.
+[[gnu::always_inline]] inline double multiply_add(double a, double b, double c) {
+#if SOFTSTEP_USE_FMA
+  return std::fma(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
+[[gnu::always_inline]] inline FourDoubles multiply_add(const FourDoubles& a, const FourDoubles& b,
+                                                       const FourDoubles& c) {
+#if SOFTSTEP_USE_FMA
+  return _mm256_fmadd_pd(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
+// a broadcast to every element.
+[[gnu::always_inline]] inline FourDoubles multiply_add(double a, const FourDoubles& b,
+                                                       const FourDoubles& c) {
+  return multiply_add(FourDoubles{a, a, a, a}, b, c);
+}
 
 // p[0..2] and a zero.
 [[gnu::always_inline]] inline FourDoubles load3(const double* p) {
@@ -35,12 +68,14 @@ using FourDoubles = double __attribute__((vector_size(32)));
   return FourDoubles{v[0], v[1], v[2], v[3]};
 }
 
-// M v for a column-major 3x6 M: its columns scaled by v and summed in column order.
+// M v for a column-major 3x6 M: its columns scaled by v and summed in column order (fused,
+// multiply_add).
 [[gnu::always_inline]] inline FourDoubles times_vector(const Eigen::Matrix<double, 3, 6>& m,
                                                        const Eigen::Matrix<double, 6, 1>& v) {
   const double* c = m.data();
-  return load3(c) * v[0] + load3(c + 3) * v[1] + load3(c + 6) * v[2] + load3(c + 9) * v[3] +
-         load3(c + 12) * v[4] + load3(c + 15) * v[5];
+  FourDoubles sum = load3(c) * v[0];
+  for (int k = 1; k < 6; ++k) sum = multiply_add(v[k], load3(c + 3 * k), sum);
+  return sum;
 }
 
 // Three vectors' x, y and z, one vector per lane.

@@ -59,8 +59,9 @@ struct BallColumns {
 // J v from the columns in registers, in times_vector's order (the same bits as from the
 // stored block).
 [[gnu::always_inline]] inline FourDoubles columns_times(const BallColumns& b, const Vec6& v) {
-  return b.column[0] * v[0] + b.column[1] * v[1] + b.column[2] * v[2] + b.column[3] * v[3] +
-         b.column[4] * v[4] + b.column[5] * v[5];
+  FourDoubles sum = b.column[0] * v[0];
+  for (int k = 1; k < 6; ++k) sum = multiply_add(v[k], b.column[k], sum);
+  return sum;
 }
 
 void fill_ball_rows(double sign, const Eigen::Vector3d& r, Jac& jac) {

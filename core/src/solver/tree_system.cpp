@@ -275,23 +275,35 @@ using Row3 = FourDoubles;
   return Row3{matrix[row], matrix[row + stride], matrix[row + 2 * stride], 0.0};
 }
 
-// sum_k a[k] * rows[k], k < 3
+// sum_k a[k] * rows[k], k < 3 (fused, multiply_add)
 [[gnu::always_inline]] inline Row3 combine(const Row3& a, const Row3* rows) {
-  return a[0] * rows[0] + a[1] * rows[1] + a[2] * rows[2];
+  return multiply_add(a[2], rows[2], multiply_add(a[1], rows[1], a[0] * rows[0]));
+}
+
+// sum + sum_k a[k] * rows[k], k < 3 (fused, multiply_add)
+[[gnu::always_inline]] inline Row3 combine_onto(const Row3& a, const Row3* rows, const Row3& sum) {
+  return multiply_add(a[2], rows[2], multiply_add(a[1], rows[1], multiply_add(a[0], rows[0], sum)));
+}
+
+// x y - z w, the product z w rounded first (fused, multiply_add)
+[[gnu::always_inline]] inline double difference_of_products(double x, double y, double z,
+                                                           double w) {
+  return multiply_add(x, y, -(z * w));
 }
 
 // A 3x3 inverse by cofactors, by rows.
 [[gnu::always_inline]] inline void invert(const Row3 (&e)[3], Row3 (&inverse)[3]) {
-  const double c00 = e[1][1] * e[2][2] - e[1][2] * e[2][1];
-  const double c01 = e[1][2] * e[2][0] - e[1][0] * e[2][2];
-  const double c02 = e[1][0] * e[2][1] - e[1][1] * e[2][0];
-  const double c10 = e[0][2] * e[2][1] - e[0][1] * e[2][2];
-  const double c11 = e[0][0] * e[2][2] - e[0][2] * e[2][0];
-  const double c12 = e[0][1] * e[2][0] - e[0][0] * e[2][1];
-  const double c20 = e[0][1] * e[1][2] - e[0][2] * e[1][1];
-  const double c21 = e[0][2] * e[1][0] - e[0][0] * e[1][2];
-  const double c22 = e[0][0] * e[1][1] - e[0][1] * e[1][0];
-  const double s = 1.0 / (e[0][0] * c00 + e[0][1] * c01 + e[0][2] * c02);
+  const double c00 = difference_of_products(e[1][1], e[2][2], e[1][2], e[2][1]);
+  const double c01 = difference_of_products(e[1][2], e[2][0], e[1][0], e[2][2]);
+  const double c02 = difference_of_products(e[1][0], e[2][1], e[1][1], e[2][0]);
+  const double c10 = difference_of_products(e[0][2], e[2][1], e[0][1], e[2][2]);
+  const double c11 = difference_of_products(e[0][0], e[2][2], e[0][2], e[2][0]);
+  const double c12 = difference_of_products(e[0][1], e[2][0], e[0][0], e[2][1]);
+  const double c20 = difference_of_products(e[0][1], e[1][2], e[0][2], e[1][1]);
+  const double c21 = difference_of_products(e[0][2], e[1][0], e[0][0], e[1][2]);
+  const double c22 = difference_of_products(e[0][0], e[1][1], e[0][1], e[1][0]);
+  const double s =
+      1.0 / multiply_add(e[0][2], c02, multiply_add(e[0][1], c01, e[0][0] * c00));
   inverse[0] = Row3{c00, c10, c20, 0.0} * s;
   inverse[1] = Row3{c01, c11, c21, 0.0} * s;
   inverse[2] = Row3{c02, c12, c22, 0.0} * s;
@@ -312,8 +324,8 @@ using Row3 = FourDoubles;
                                                   Row3 (&k)[3]) {
   const double* j = jac.data();
   for (int i = 0; i < 3; ++i) {
-    k[i] = j[i] * u[0] + j[i + 3] * u[1] + j[i + 6] * u[2] + j[i + 9] * u[3] + j[i + 12] * u[4] +
-           j[i + 15] * u[5];
+    k[i] = j[i] * u[0];
+    for (int c = 1; c < 6; ++c) k[i] = multiply_add(j[i + 3 * c], u[c], k[i]);
   }
 }
 
@@ -468,7 +480,7 @@ void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
   store_rows(y, link_y_[node.index]);
   Row3 left[3];
   for (int i = 0; i < 3; ++i) {
-    left[i] = k_pp[i] - (k_cp[0][i] * y[0] + k_cp[1][i] * y[1] + k_cp[2][i] * y[2]);
+    left[i] = k_pp[i] - multiply_add(k_cp[2][i], y[2], multiply_add(k_cp[1][i], y[1], k_cp[0][i] * y[0]));
   }
   subtract_rows(left, *parent_block);
 }
@@ -597,8 +609,8 @@ void TreeSystem::backward(Span span, const std::vector<TreeJoint>& joints,
           Row3 l = -load3(joint_rhs[c].data() + 3 * column);
           if (!root) l -= combine(l_p, y_columns);
           store3(dp[c].data() + 3 * column, l);
-          linear += combine(l, child_rows);
-          angular += combine(l, child_rows + 3);
+          linear = combine_onto(l, child_rows, linear);
+          angular = combine_onto(l, child_rows + 3, angular);
         }
         double* v = dv[node.index].data() + 6 * column;
         store3(v, -w * linear);
