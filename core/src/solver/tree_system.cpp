@@ -287,7 +287,7 @@ using Row3 = FourDoubles;
 
 // x y - z w, the product z w rounded first (fused, multiply_add)
 [[gnu::always_inline]] inline double difference_of_products(double x, double y, double z,
-                                                           double w) {
+                                                            double w) {
   return multiply_add(x, y, -(z * w));
 }
 
@@ -302,8 +302,7 @@ using Row3 = FourDoubles;
   const double c20 = difference_of_products(e[0][1], e[1][2], e[0][2], e[1][1]);
   const double c21 = difference_of_products(e[0][2], e[1][0], e[0][0], e[1][2]);
   const double c22 = difference_of_products(e[0][0], e[1][1], e[0][1], e[1][0]);
-  const double s =
-      1.0 / multiply_add(e[0][2], c02, multiply_add(e[0][1], c01, e[0][0] * c00));
+  const double s = 1.0 / multiply_add(e[0][2], c02, multiply_add(e[0][1], c01, e[0][0] * c00));
   inverse[0] = Row3{c00, c10, c20, 0.0} * s;
   inverse[1] = Row3{c01, c11, c21, 0.0} * s;
   inverse[2] = Row3{c02, c12, c22, 0.0} * s;
@@ -480,7 +479,8 @@ void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
   store_rows(y, link_y_[node.index]);
   Row3 left[3];
   for (int i = 0; i < 3; ++i) {
-    left[i] = k_pp[i] - multiply_add(k_cp[2][i], y[2], multiply_add(k_cp[1][i], y[1], k_cp[0][i] * y[0]));
+    const Row3 k_cp_column{k_cp[0][i], k_cp[1][i], k_cp[2][i], 0.0};
+    left[i] = k_pp[i] - combine(k_cp_column, y);
   }
   subtract_rows(left, *parent_block);
 }
