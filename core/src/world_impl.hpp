@@ -157,11 +157,17 @@ class LaneSolver {
                                     const solver::Share& share) = 0;
   virtual void integrate_positions(SolverBodies& bodies, const simd::SubstepContext& ctx,
                                    const solver::Share& share) = 0;
-  // The same for the given records only (one thread's, no Share): a tree island's bodies.
-  virtual void integrate_velocities_of(SolverBodies& bodies, std::span<const std::int32_t> records,
+  // The same for the given records only (one thread's, no Share): a tree island's bodies,
+  // as runs of kBodyBlock consecutive records (the first of each; integrated a lane per record,
+  // as the blocks above) and single records. Every record integrates alone: the same bits
+  // either way.
+  struct RecordRuns {
+    std::span<const std::int32_t> runs, singles;
+  };
+  virtual void integrate_velocities_of(SolverBodies& bodies, RecordRuns records,
                                        const simd::SubstepContext& ctx, bool gravity, bool damping,
                                        bool torque) = 0;
-  virtual void integrate_positions_of(SolverBodies& bodies, std::span<const std::int32_t> records,
+  virtual void integrate_positions_of(SolverBodies& bodies, RecordRuns records,
                                       const simd::SubstepContext& ctx) = 0;
 };
 

@@ -302,17 +302,20 @@ class LaneSolverImpl final : public LaneSolver {
                                         b.blocks.data() + mine.begin, mine.end - mine.begin, ctx);
   }
 
-  void integrate_velocities_of(SolverBodies& b, std::span<const std::int32_t> records,
-                               const simd::SubstepContext& ctx, bool gravity, bool damping,
-                               bool torque) override {
+  void integrate_velocities_of(SolverBodies& b, RecordRuns records, const simd::SubstepContext& ctx,
+                               bool gravity, bool damping, bool torque) override {
+    kernels_.bodies.integrate_velocities[gravity][damping][torque](
+        b.velocity.data(), b.force.data(), records.runs.data(), records.runs.size(), ctx);
     kernels_.bodies.integrate_velocity_records[gravity][damping][torque](
-        b.velocity.data(), b.force.data(), records.data(), records.size(), ctx);
+        b.velocity.data(), b.force.data(), records.singles.data(), records.singles.size(), ctx);
   }
 
-  void integrate_positions_of(SolverBodies& b, std::span<const std::int32_t> records,
+  void integrate_positions_of(SolverBodies& b, RecordRuns records,
                               const simd::SubstepContext& ctx) override {
-    kernels_.bodies.integrate_position_records(b.delta.data(), b.velocity.data(), records.data(),
-                                               records.size(), ctx);
+    kernels_.bodies.integrate_positions(b.delta.data(), b.velocity.data(), records.runs.data(),
+                                        records.runs.size(), ctx);
+    kernels_.bodies.integrate_position_records(b.delta.data(), b.velocity.data(),
+                                               records.singles.data(), records.singles.size(), ctx);
   }
 
  private:

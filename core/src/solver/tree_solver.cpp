@@ -23,6 +23,10 @@ bool exact_kind(const JointSlot& j) {
   return false;
 }
 
+LaneSolver::RecordRuns records_of(const auto& part) {
+  return {part.record_runs, part.single_records};
+}
+
 bool moves(const BodySlot& b) {
   return b.type == BodyType::Dynamic;
 }
@@ -282,9 +286,24 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
       continue;
     }
     for (std::uint32_t b = 0; b < island.bodies.size(); ++b) {
-      Part& part = island.parts[island.system.body_part(b)];
-      part.bodies.push_back(b);
-      part.records.push_back(static_cast<std::int32_t>(island.bodies[b] + 1));
+      island.parts[island.system.body_part(b)].bodies.push_back(b);
+    }
+    for (Part& part : island.parts) {
+      // The part's bodies are in slot order: a run of kBodyBlock consecutive records is one
+      // whose last is kBodyBlock - 1 past its first.
+      const auto record = [&](std::size_t n) {
+        return static_cast<std::int32_t>(island.bodies[part.bodies[n]] + 1);
+      };
+      std::size_t next = 0;
+      while (next < part.bodies.size()) {
+        const std::size_t last = next + kBodyBlock - 1;
+        if (last < part.bodies.size() && record(last) == record(next) + kBodyBlock - 1) {
+          part.record_runs.push_back(record(next));
+          next += kBodyBlock;
+        } else {
+          part.single_records.push_back(record(next++));
+        }
+      }
     }
     for (std::uint32_t k = 0; k < island.joints.size(); ++k) {
       island.parts[island.system.joint_part(k)].joints.push_back(k);
@@ -358,8 +377,8 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
     // stage by stage): only the last sub-step's passes add theirs.
     const bool last = sub == whole.substeps - 1;
     for (int p = crew.first_part; p < crew.end_part; ++p) {
-      lanes.integrate_velocities_of(sb, island.parts[p].records, ctx, whole.gravity, whole.damping,
-                                    whole.torque);
+      lanes.integrate_velocities_of(sb, records_of(island.parts[p]), ctx, whole.gravity,
+                                    whole.damping, whole.torque);
     }
     // After a folding relax pass the solve pass only hands over impulses: no barrier for it.
     if (!island.folded) crew.sync();  // a joint between the parts reads both bodies' velocities
@@ -370,7 +389,7 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
                   .add_impulses = last},
                  crew);
     for (int p = crew.first_part; p < crew.end_part; ++p) {
-      lanes.integrate_positions_of(sb, island.parts[p].records, ctx);
+      lanes.integrate_positions_of(sb, records_of(island.parts[p]), ctx);
     }
     if (whole.relax) {
       crew.sync();  // and both bodies' positions
