@@ -625,6 +625,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
                         .fold_next = fold,
                         .gravity = gravity,
                         .torque = torque,
+                        .fold_apart = sub + 2 == s.substeps,
                         .check = sub + 1 == s.substeps},
                        share);
           solver::team_barrier(share);

@@ -399,6 +399,7 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
                     .fold_next = !last,
                     .gravity = whole.gravity,
                     .torque = whole.torque,
+                    .fold_apart = sub + 2 == whole.substeps,
                     .check = last},
                    crew);
     }
@@ -426,12 +427,14 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     // The last relax pass solved this sub-step's velocity change (Pass::fold_next): its
     // impulses are all that is left. (The lead clears the flag in the next relax pass, after
     // every thread has read it.)
-    if (which.add_impulses)
+    if (which.add_impulses && !island.folded_together)
       each_part([&](Part& part, int) { hand_over(part, island.dp_triple, 2); });
     return;
   }
-  // A relax pass that folds the next sub-step's solve pass in solves three right sides.
+  // A relax pass that folds the next sub-step's solve pass in solves three right sides, or
+  // two where that pass's impulses are not read (Pass::fold_apart).
   const bool fold = !with_bias && which.fold_next;
+  const bool fold_apart = fold && which.fold_apart;
   // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
   // the bodies have moved only by the position projection since. (The lead writes the flags
   // below in the root part, after every thread has read them.)
@@ -505,8 +508,12 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         const Vec6 a[2] = {va, next_change(t.body[0], ia)}, b[2] = {vb, next_change(t.body[1], ib)};
         FourDoubles products[2];
         fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products);
-        jv = products[0];
-        store3(island.next_change[k].data(), products[1]);
+        if (fold_apart) {
+          jv = products[0];
+          store3(island.next_change[k].data(), products[1]);
+        } else {
+          jv = products[0] + products[1];
+        }
       } else {
         const Vec6 a[1] = {va}, b[1] = {vb};
         FourDoubles products[1];
@@ -545,7 +552,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     if (!reuse_factor) island.system.factor_part(p, island.inverse_mass, island.rows);
     if (with_bias) {
       island.system.solve_up<1>(p, island.rows, {});
-    } else if (fold) {
+    } else if (fold_apart) {
       island.system.solve_up<3>(p, island.rows, {&island.error, &island.next_change});
     } else {
       island.system.solve_up<2>(p, island.rows, {&island.error});
@@ -554,11 +561,14 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   crew.sync();
   if (crew.lead) {
     island.relax_factored = !with_bias;
-    if (!with_bias) island.folded = fold;
+    if (!with_bias) {
+      island.folded = fold;
+      island.folded_together = fold && !fold_apart;
+    }
     if (!reuse_factor) island.system.factor_root(island.inverse_mass, island.rows);
     if (with_bias) {
       island.system.solve_root<1>(island.rows, island.dv, island.dp);
-    } else if (fold) {
+    } else if (fold_apart) {
       island.system.solve_root<3>(island.rows, island.dv_triple, island.dp_triple);
     } else {
       island.system.solve_root<2>(island.rows, island.dv_pair, island.dp_pair);
@@ -596,7 +606,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       move_positions(part.bodies, island.bodies, sb, [&](std::size_t b) { return dv[b].col(1); });
     });
   };
-  if (fold) {
+  if (fold_apart) {
     relax_down(island.dv_triple, island.dp_triple);
   } else {
     relax_down(island.dv_pair, island.dp_pair);

@@ -82,6 +82,13 @@ class TreeSolver {
     // of a sub-step's end, so never for a step's last sub-step.
     bool fold_next = false;
     bool gravity = false, torque = false;
+    // With fold_next: whether the folded solve pass's impulses are read, which a sub-step's
+    // lane impulses are only at a step's last sub-step (every earlier sub-step clears them,
+    // and an island stepped whole hands over the last sub-step's passes' only). Where they
+    // are not, the folded velocity change is solved with this pass's own as one right side
+    // (J v + J of that change) instead of as a column of its own: two columns where there were
+    // three, at every sub-step but the last two.
+    bool fold_apart = true;
     // A relax pass that measures the joints after its projection and runs Newton steps where
     // one is still open by more than a tolerance (tree_solver.cpp). Needed at a step's last
     // sub-step only: at the others the next sub-step's projection takes out what is left with
@@ -155,8 +162,10 @@ class TreeSolver {
     std::vector<Eigen::Matrix<double, 6, 3>> dv_triple;
     std::vector<Eigen::Matrix<double, 3, 3>> dp_triple;
     std::vector<Eigen::Vector3d> next_change;
-    // The last relax pass folded the next sub-step's solve pass in (Pass::fold_next).
+    // The last relax pass folded the next sub-step's solve pass in (Pass::fold_next), and
+    // did so without its own column for it (Pass::fold_apart false: no impulses to hand over).
     bool folded = false;
+    bool folded_together = false;
     // Per part, the largest joint gap the relax pass's last check left (its Newton steps).
     double worst[2] = {0.0, 0.0};
     TreeSystem system;
