@@ -618,15 +618,10 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
         stage(Stage::Relax, [&] {
           // The next sub-step's solve pass folded into this one where nothing but the
           // velocity integration changes the tree islands' velocities before it.
-          const bool fold = sub + 1 < s.substeps && !has_contacts && !refreshes_before(sub + 1) &&
-                            !joints_run(PlanStage::Solve) && !joints_run(PlanStage::WarmStart);
+          const bool may_fold = !has_contacts && !refreshes_before(sub + 1) &&
+                                !joints_run(PlanStage::Solve) && !joints_run(PlanStage::WarmStart);
           w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
-                       {.with_bias = false,
-                        .fold_next = fold,
-                        .gravity = gravity,
-                        .torque = torque,
-                        .fold_apart = sub + 2 == s.substeps,
-                        .check = sub + 1 == s.substeps},
+                       solver::TreeSolver::Pass::relax(sub, s.substeps, may_fold, gravity, torque),
                        share);
           solver::team_barrier(share);
         });

@@ -393,15 +393,9 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
     }
     if (whole.relax) {
       crew.sync();  // and both bodies' positions
-      solve_island(island, joints, bodies, sb, lanes, ctx,
-                   {.with_bias = false,
-                    .add_impulses = last,
-                    .fold_next = !last,
-                    .gravity = whole.gravity,
-                    .torque = whole.torque,
-                    .fold_apart = sub + 2 == whole.substeps,
-                    .check = last},
-                   crew);
+      Pass relax = Pass::relax(sub, whole.substeps, true, whole.gravity, whole.torque);
+      relax.add_impulses = last;
+      solve_island(island, joints, bodies, sb, lanes, ctx, relax, crew);
     }
   }
 }

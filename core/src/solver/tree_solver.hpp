@@ -95,6 +95,18 @@ class TreeSolver {
     // the drift of its own motion (and the check's pass over the joints and, shared, its two
     // barriers are saved).
     bool check = true;
+    // The relax pass of sub-step `sub` of `substeps`, for both ways of stepping (pass and
+    // whole_substeps): `may_fold` when nothing but the velocity integration changes the
+    // islands' velocities before the next sub-step's solve pass (step.cpp says when).
+    static Pass relax(int sub, int substeps, bool may_fold, bool gravity, bool torque) {
+      const bool last = sub + 1 == substeps;
+      return {.with_bias = false,
+              .fold_next = may_fold && !last,
+              .gravity = gravity,
+              .torque = torque,
+              .fold_apart = sub + 2 == substeps,
+              .check = last};
+    }
   };
   // One exact pass over this thread's islands. Writes the bodies' velocities and adds to the
   // joints' lane impulses; the relax pass also moves the bodies' positions. An island that is
