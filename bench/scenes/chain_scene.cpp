@@ -36,6 +36,8 @@ ChainScene build_chain(World& world, const ChainOptions& o) {
       link.position = position;
       link.mass = mass;
       link.inertia = solid_sphere_inertia(mass, o.link_radius) * o.inertia_scale;
+      link.linear_damping = o.linear_damping;
+      link.angular_damping = o.angular_damping;
       const BodyId body = world.create_body(link);
       scene.links[static_cast<std::size_t>(c)].push_back(body);
       if (o.joint == ChainJoint::Ball) {

@@ -29,6 +29,8 @@ struct ChainOptions {
   // chain has as many links as entries (links is ignored).
   std::vector<double> link_masses;
   double inertia_scale = 1.0;  // multiplies every link's sphere inertia (huge or tiny inertia)
+  double linear_damping = 0.0;   // 1/s, every link's
+  double angular_damping = 0.0;  // 1/s, every link's
   double tilt = 0.0;           // rad: the layout direction turned about z (a hanging chain swings)
   // Extra distance between the anchors of each joint at creation, m, first joint first (a
   // chain laid out already stretched to its equilibrium); empty: none.

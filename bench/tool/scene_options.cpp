@@ -91,6 +91,12 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
       ->capture_default_str();
   cmd.add_option("--end-mass", c.end_mass, "chain: the last link's mass, kg")
       ->check(finite_in(1e-6, 1e9));
+  cmd.add_option("--linear-damping", c.chain.linear_damping, "chain: every link's, 1/s")
+      ->check(finite_in(0.0, 1e9))
+      ->capture_default_str();
+  cmd.add_option("--angular-damping", c.chain.angular_damping, "chain: every link's, 1/s")
+      ->check(finite_in(0.0, 1e9))
+      ->capture_default_str();
   cmd.add_option("--size", c.grid.size, "grid: N x N bodies")
       ->check(whole_in(2, 100000))
       ->capture_default_str();
@@ -123,7 +129,10 @@ void add_scene_options(CLI::App& cmd, SceneChoice& c) {
         throw CLI::ValidationError(flag,
                                    std::string("a ") + owner + " option, not for scene " + c.scene);
     };
-    for (const char* flag : {"--joint", "--end-mass", "--layout"}) only_for(flag, "chain");
+    for (const char* flag :
+         {"--joint", "--end-mass", "--layout", "--linear-damping", "--angular-damping"}) {
+      only_for(flag, "chain");
+    }
     if (c.scene != "hinge-chain") {
       for (const char* flag : {"--links", "--chains"}) only_for(flag, "chain");
     }

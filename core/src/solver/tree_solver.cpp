@@ -393,7 +393,7 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
     }
     if (whole.relax) {
       crew.sync();  // and both bodies' positions
-      Pass relax = Pass::relax(sub, whole.substeps, true, whole.gravity, whole.torque);
+      Pass relax = Pass::relax(sub, whole.substeps, !whole.damping, whole.gravity, whole.torque);
       relax.add_impulses = last;
       solve_island(island, joints, bodies, sb, lanes, ctx, relax, crew);
     }
