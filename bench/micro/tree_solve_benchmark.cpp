@@ -41,6 +41,7 @@ struct Chain {
       t.body[1] = j;
       const Eigen::Vector3d r_a(0.5 + jitter(random), jitter(random), jitter(random));
       const Eigen::Vector3d r_b(-0.5 + jitter(random), jitter(random), jitter(random));
+      t.ball = true;
       t.jacobian[0] = ball_rows(-1.0, r_a);
       t.jacobian[1] = ball_rows(1.0, r_b);
       t.residual = {jitter(random), jitter(random), jitter(random)};

@@ -7,6 +7,15 @@
 #include "solver/tree_system.hpp"
 
 namespace softstep::reference {
+namespace {
+
+// Whether a joint's rows against one body are sign [I, -[r]x] for some arm r.
+bool ball_rows(const solver::Jac& jac, double sign) {
+  const Eigen::Matrix3d linear = jac.leftCols<3>(), angular = jac.rightCols<3>();
+  return linear == sign * Eigen::Matrix3d::Identity() && angular == -angular.transpose();
+}
+
+}  // namespace
 
 ExactSolution solve_tree(const SoftSystem& s) {
   // Nodes: the bodies of finite mass.
@@ -49,6 +58,11 @@ ExactSolution solve_tree(const SoftSystem& s) {
         for (int c = 0; c < 6; ++c) t.jacobian[side](r, c) = s.jacobian.coeff(row + r, 6 * b + c);
       }
     }
+    // first_substep_system holds ball joints (3 rows) and distance joints (1) only; a ball
+    // joint's rows are s [I, -[r]x] on each side, which the links' elimination then reads back
+    // (TreeJoint::ball), checked here entry by entry.
+    t.ball = count == 3 && seen.size() == 2 && ball_rows(t.jacobian[0], -1.0) &&
+             ball_rows(t.jacobian[1], 1.0);
     for (int i = 0; i < count; ++i) {
       t.residual[i] = residual[row + i];
       for (int k = 0; k < count; ++k) t.gamma(i, k) = s.softness.coeff(row + i, row + k);

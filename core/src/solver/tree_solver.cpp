@@ -267,6 +267,7 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     t.body[0] = moves(bodies[slot.body_a]) ? local[slot.body_a] : -1;
     t.body[1] = moves(bodies[slot.body_b]) ? local[slot.body_b] : -1;
     t.rows = slot.type == JointType::Ball ? 3 : 1;
+    t.ball = slot.type == JointType::Ball;  // its rows come from ball_columns
     island.rows.push_back(t);
   }
   for (std::size_t i = 0; i < roots.size(); ++i) {
@@ -419,8 +420,9 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   };
   if (with_bias && island.folded) {
     // The last relax pass solved this sub-step's velocity change (Pass::fold_next): its
-    // impulses are all that is left. (The lead clears the flag in the next relax pass, after
-    // every thread has read it.)
+    // impulses are all that is left, and none where that pass solved them with its own
+    // (Pass::fold_apart: nobody reads them). (The lead clears the flags in the next relax pass,
+    // after every thread has read them.)
     if (which.add_impulses && !island.folded_together)
       each_part([&](Part& part, int) { hand_over(part, island.dp_triple, 2); });
     return;

@@ -49,7 +49,12 @@ struct InverseMass {
 // or -1 when that body does not move (static, kinematic): its velocity is already in r.
 struct TreeJoint {
   std::int32_t body[2] = {-1, -1};
-  int rows = 3;                                   // 1..3; rows beyond are padding
+  int rows = 3;  // 1..3; rows beyond are padding
+  // A ball joint's rows, s [I, -[r]x] on each side (s = -1 on side 0, +1 on side 1, r the
+  // anchor's arm from the body's centre): the elimination of a chain link between two such
+  // joints reads s and r back from the blocks and forms its products from them
+  // (tree_system.cpp, eliminate_ball_link).
+  bool ball = false;
   Jac jacobian[2] = {Jac::Zero(), Jac::Zero()};  // per side
   Eigen::Matrix3d gamma = Eigen::Matrix3d::Zero();     // symmetric (a chain link relies on it)
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();  // r = J v + bias + Gamma P
@@ -162,6 +167,8 @@ class TreeSystem {
   }
   void eliminate_link(std::size_t k, const InverseMass* inverse_mass,
                       const std::vector<TreeJoint>& joints);
+  void eliminate_ball_link(std::size_t k, const InverseMass* inverse_mass,
+                           const std::vector<TreeJoint>& joints);
 
   // [part 0's nodes][part 1's][the root's children of part 0][of part 1][the root]
   std::vector<TreeNode> order_;
