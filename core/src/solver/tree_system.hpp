@@ -169,6 +169,13 @@ class TreeSystem {
                       const std::vector<TreeJoint>& joints);
   void eliminate_ball_link(std::size_t k, const InverseMass* inverse_mass,
                            const std::vector<TreeJoint>& joints);
+  // A chain link whose parent and child joints (those it has) are ball joints
+  // (TreeJoint::ball): its factor and solve steps read their signs and arms.
+  bool ball_link(const TreeNode& link, const std::vector<TreeJoint>& joints) const {
+    const std::int32_t child = body_child_[link.index];
+    return (link.parent < 0 || joints[order_[static_cast<std::size_t>(link.parent)].index].ball) &&
+           (child == kNoChild || joints[static_cast<std::size_t>(child)].ball);
+  }
 
   // [part 0's nodes][part 1's][the root's children of part 0][of part 1][the root]
   std::vector<TreeNode> order_;
