@@ -53,7 +53,7 @@ struct TreeJoint {
   // A ball joint's rows, s [I, -[r]x] on each side (s = -1 on side 0, +1 on side 1, r the
   // anchor's arm from the body's centre): the elimination of a chain link between two such
   // joints reads s and r back from the blocks and forms its products from them
-  // (tree_system.cpp, eliminate_ball_link).
+  // (tree_system.cpp, BallLinkProducts).
   bool ball = false;
   Jac jacobian[2] = {Jac::Zero(), Jac::Zero()};  // per side
   Eigen::Matrix3d gamma = Eigen::Matrix3d::Zero();     // symmetric (a chain link relies on it)
@@ -167,8 +167,10 @@ class TreeSystem {
   }
   void eliminate_link(std::size_t k, const InverseMass* inverse_mass,
                       const std::vector<TreeJoint>& joints);
-  void eliminate_ball_link(std::size_t k, const InverseMass* inverse_mass,
-                           const std::vector<TreeJoint>& joints);
+  // The elimination proper, with the link's products formed by `products` (tree_system.cpp:
+  // from the general blocks, or from ball joints' arms).
+  template <class Products>
+  void eliminate_link_with(const TreeNode& link, Products& products);
   // A chain link whose parent and child joints (those it has) are ball joints
   // (TreeJoint::ball): its factor and solve steps read their signs and arms.
   bool ball_link(const TreeNode& link, const std::vector<TreeJoint>& joints) const {
