@@ -78,6 +78,10 @@ using FourDoubles = double __attribute__((vector_size(32)));
   return sum;
 }
 
+[[gnu::always_inline]] inline void store4(double (&p)[4], const FourDoubles& v) {
+  __builtin_memcpy(p, &v, sizeof(v));
+}
+
 // Three vectors' x, y and z, one vector per lane.
 struct FourVectors {
   FourDoubles x, y, z;

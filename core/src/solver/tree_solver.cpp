@@ -545,13 +545,15 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       const Eigen::Vector3d bias = (bias_rate * c).cwiseMax(-bound).cwiseMin(bound);
       store3(t.residual.data(), jv + load3(bias.data()));
     }
-    if (!reuse_factor) island.system.factor_part(p, island.inverse_mass, island.rows);
-    if (with_bias) {
+    if (reuse_factor) {
       island.system.solve_up<1>(p, island.rows, {});
+    } else if (with_bias) {
+      island.system.factor_solve_up<1>(p, island.inverse_mass, island.rows, {});
     } else if (fold_apart) {
-      island.system.solve_up<3>(p, island.rows, {&island.error, &island.next_change});
+      island.system.factor_solve_up<3>(p, island.inverse_mass, island.rows,
+                                       {&island.error, &island.next_change});
     } else {
-      island.system.solve_up<2>(p, island.rows, {&island.error});
+      island.system.factor_solve_up<2>(p, island.inverse_mass, island.rows, {&island.error});
     }
   });
   crew.sync();
@@ -561,13 +563,16 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       island.folded = fold;
       island.folded_together = fold && !fold_apart;
     }
-    if (!reuse_factor) island.system.factor_root(island.inverse_mass, island.rows);
-    if (with_bias) {
+    if (reuse_factor) {
       island.system.solve_root<1>(island.rows, island.dv, island.dp);
+    } else if (with_bias) {
+      island.system.factor_solve_root<1>(island.inverse_mass, island.rows, island.dv, island.dp);
     } else if (fold_apart) {
-      island.system.solve_root<3>(island.rows, island.dv_triple, island.dp_triple);
+      island.system.factor_solve_root<3>(island.inverse_mass, island.rows, island.dv_triple,
+                                         island.dp_triple);
     } else {
-      island.system.solve_root<2>(island.rows, island.dv_pair, island.dp_pair);
+      island.system.factor_solve_root<2>(island.inverse_mass, island.rows, island.dv_pair,
+                                         island.dp_pair);
     }
   }
   crew.sync();
@@ -634,13 +639,11 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         const Anchors& now = island.anchors[k];
         fill_jacobians(joints[island.joints[k]], now.r_a, now.r_b, now.separation, island.rows[k]);
       }
-      island.system.factor_part(p, island.inverse_mass, island.rows);
-      island.system.solve_up<1>(p, island.rows, {});
+      island.system.factor_solve_up<1>(p, island.inverse_mass, island.rows, {});
     });
     crew.sync();
     if (crew.lead) {
-      island.system.factor_root(island.inverse_mass, island.rows);
-      island.system.solve_root<1>(island.rows, island.dv, island.dp);
+      island.system.factor_solve_root<1>(island.inverse_mass, island.rows, island.dv, island.dp);
     }
     crew.sync();
     each_part([&](Part& part, int p) {

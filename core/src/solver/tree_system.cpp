@@ -285,35 +285,39 @@ using Row3 = FourDoubles;
   return multiply_add(a[2], rows[2], multiply_add(a[1], rows[1], multiply_add(a[0], rows[0], sum)));
 }
 
-// x y - z w, the product z w rounded first (fused, multiply_add)
-[[gnu::always_inline]] inline double difference_of_products(double x, double y, double z,
-                                                            double w) {
-  return multiply_add(x, y, -(z * w));
-}
-
-// A 3x3 inverse by cofactors, by rows.
-[[gnu::always_inline]] inline void invert(const Row3 (&e)[3], Row3 (&inverse)[3]) {
-  const double c00 = difference_of_products(e[1][1], e[2][2], e[1][2], e[2][1]);
-  const double c01 = difference_of_products(e[1][2], e[2][0], e[1][0], e[2][2]);
-  const double c02 = difference_of_products(e[1][0], e[2][1], e[1][1], e[2][0]);
-  const double c10 = difference_of_products(e[0][2], e[2][1], e[0][1], e[2][2]);
-  const double c11 = difference_of_products(e[0][0], e[2][2], e[0][2], e[2][0]);
-  const double c12 = difference_of_products(e[0][1], e[2][0], e[0][0], e[2][1]);
-  const double c20 = difference_of_products(e[0][1], e[1][2], e[0][2], e[1][1]);
-  const double c21 = difference_of_products(e[0][2], e[1][0], e[0][0], e[1][2]);
-  const double c22 = difference_of_products(e[0][0], e[1][1], e[0][1], e[1][0]);
-  const double s = 1.0 / multiply_add(e[0][2], c02, multiply_add(e[0][1], c01, e[0][0] * c00));
-  inverse[0] = Row3{c00, c10, c20, 0.0} * s;
-  inverse[1] = Row3{c01, c11, c21, 0.0} * s;
-  inverse[2] = Row3{c02, c12, c22, 0.0} * s;
-}
-
 // v's elements turned: (y, z, x) and (z, x, y).
 [[gnu::always_inline]] inline Row3 yzx(const Row3& v) {
   return __builtin_shufflevector(v, v, 1, 2, 0, 3);
 }
 [[gnu::always_inline]] inline Row3 zxy(const Row3& v) {
   return __builtin_shufflevector(v, v, 2, 0, 1, 3);
+}
+
+// The transpose of a 3x3 block's rows (their last elements 0): its columns, in registers.
+[[gnu::always_inline]] inline void transpose(const Row3 (&rows)[3], Row3 (&columns)[3]) {
+  const Row3 even = __builtin_shufflevector(rows[0], rows[1], 0, 4, 2, 6);  // a0 b0 a2 b2
+  const Row3 odd = __builtin_shufflevector(rows[0], rows[1], 1, 5, 3, 7);   // a1 b1 a3 b3
+  columns[0] = __builtin_shufflevector(even, rows[2], 0, 1, 4, 7);
+  columns[1] = __builtin_shufflevector(odd, rows[2], 0, 1, 5, 7);
+  columns[2] = __builtin_shufflevector(even, rows[2], 2, 3, 6, 7);
+}
+
+// a x b, each element's product of b's turned elements rounded first (fused, multiply_add).
+[[gnu::always_inline]] inline Row3 cross(const Row3& a, const Row3& b) {
+  return multiply_add(yzx(a), zxy(b), -(zxy(a) * yzx(b)));
+}
+
+// A 3x3 inverse by cofactors, by columns: column k of the adjugate is the cross product of the
+// two rows other than k (in turn), its element i the cofactor of (k, i). Three vector cross
+// products where the cofactors one by one took nine scalar differences and the inserts that
+// built rows of them.
+[[gnu::always_inline]] inline void invert_columns(const Row3 (&e)[3], Row3 (&columns)[3]) {
+  const Row3 c0 = cross(e[1], e[2]), c1 = cross(e[2], e[0]), c2 = cross(e[0], e[1]);
+  const double s =
+      1.0 / multiply_add(e[0][2], c0[2], multiply_add(e[0][1], c0[1], e[0][0] * c0[0]));
+  columns[0] = c0 * s;
+  columns[1] = c1 * s;
+  columns[2] = c2 * s;
 }
 
 // A ball joint's rows against one body, J = [s I, [a]x] (s = -1 on side a, +1 on side b; a =
@@ -385,12 +389,6 @@ struct BallSide {
   }
 }
 
-// The rows of a 3x3 block into a col-major Matrix3d.
-[[gnu::always_inline]] inline void store_rows(const Row3 (&rows)[3], Eigen::Matrix3d& block) {
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c) block(i, c) = rows[i][c];
-}
-
 // A chain link's products K_xy = J_x W J_y^T with its parent joint p and child joint c (the
 // sides at the link), by rows, each formed where the elimination first needs it: K_pp, K_cc,
 // then K_cp and its columns (eliminate_link).
@@ -445,10 +443,23 @@ struct BallLinkProducts {
   }
 };
 
-// The rows of a 3x3 block subtracted from a col-major Matrix3d.
-[[gnu::always_inline]] inline void subtract_rows(const Row3 (&rows)[3], Eigen::Matrix3d& block) {
-  for (int i = 0; i < 3; ++i)
-    for (int c = 0; c < 3; ++c) block(i, c) -= rows[i][c];
+// A chain link's forward step, for each of Columns right sides: its parent joint's side r_p
+// loses y^T r_c (none at the root, r_p null), then its child joint's r_c becomes g = E^-1 r_c
+// (e_columns: E^-1 by columns). Each right side's three doubles are loaded once: the stores
+// may alias y and E^-1 for the compiler.
+template <int Columns>
+[[gnu::always_inline]] inline void link_forward(double* r_c, double* r_p, const Row3* y_rows,
+                                                const Row3 (&e_columns)[3]) {
+  for (int column = 0; column < Columns; ++column) {
+    const Row3 r = load3(r_c + 3 * column);
+    if (r_p != nullptr) store3(r_p + 3 * column, load3(r_p + 3 * column) - combine(r, y_rows));
+    store3(r_c + 3 * column, combine(r, e_columns));
+  }
+}
+
+// The rows of a 3x3 block subtracted from a block of padded rows (their last elements 0).
+[[gnu::always_inline]] inline void subtract_rows(const Row3 (&rows)[3], double (&block)[3][4]) {
+  for (int i = 0; i < 3; ++i) store4(block[i], load4(block[i]) - rows[i]);
 }
 
 }  // namespace
@@ -475,56 +486,69 @@ void TreeSystem::init_blocks(Span span, const std::vector<InverseMass>& inverse_
       d.col(r).setZero();
       d(r, r) = -1.0;
     }
-    joint_block_[node.index] = d;
+    PaddedRows(joint_block_[node.index].v[0]) = d;
   }
 }
 
+template <int Columns>
 void TreeSystem::eliminate(Span span, const InverseMass* inverse_mass,
                            const std::vector<TreeJoint>& joints) {
-  // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree.
+  // Leaves first: fold each node into its parent (a Schur complement), no fill on a tree;
+  // with right sides, each node's forward step right after its elimination (a chain link's
+  // inside eliminate_link, from its E^-1 and y in registers).
   for (std::size_t k = span.begin; k < span.end; ++k) {
-    const TreeNode& node = order_[k];
-    if (node.joint) {
-      if (under_link(node)) continue;  // folded with its link (eliminate_link)
-      // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
-      joint_inverse_[node.index] = joint_block_[node.index].inverse();
-      if (node.parent < 0) continue;
-      const std::uint32_t body = order_[static_cast<std::size_t>(node.parent)].index;
-      const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
-      const Jac scaled = joint_inverse_[node.index] * jac;
-      body_block_[body].noalias() -= jac.transpose() * scaled;
+    if (is_link(order_[k])) {
+      eliminate_link<Columns>(k, inverse_mass, joints);
       continue;
     }
-    if (is_link(node)) {
-      eliminate_link(k, inverse_mass, joints);
-      continue;
-    }
-    // B = M + sum of J_c^T (-D_c^-1) J_c over the children, positive definite.
-    Mat6& inverse = body_block_[node.index];
-    invert_body_block(inverse);
-    if (node.parent < 0) continue;
-    const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
-    const Jac& parent_jac = joints[parent_joint].jacobian[node.side];
-    Mat63& transfer = body_transfer_[node.index];
-    transfer.noalias() = inverse * parent_jac.transpose();
-    joint_block_[parent_joint].noalias() -= parent_jac * transfer;
+    eliminate_node(k, joints);
+    if constexpr (Columns > 0) forward_node<Columns>(k, joints);
   }
 }
 
-void TreeSystem::factor_part(int part, const std::vector<InverseMass>& inverse_mass,
-                             const std::vector<TreeJoint>& joints) {
+void TreeSystem::eliminate_node(std::size_t k, const std::vector<TreeJoint>& joints) {
+  const TreeNode& node = order_[k];
+  if (node.joint) {
+    if (under_link(node)) return;  // folded with its link (eliminate_link)
+    // Reduced joint blocks are negative definite (or -1 padding): a 3x3 inverse.
+    joint_inverse_[node.index] = PaddedRows(joint_block_[node.index].v[0]).inverse();
+    if (node.parent < 0) return;
+    const std::uint32_t body = order_[static_cast<std::size_t>(node.parent)].index;
+    const Jac& jac = joints[node.index].jacobian[node.side];  // E = J^T, 6x3
+    const Jac scaled = joint_inverse_[node.index] * jac;
+    body_block_[body].noalias() -= jac.transpose() * scaled;
+    return;
+  }
+  // B = M + sum of J_c^T (-D_c^-1) J_c over the children, positive definite.
+  Mat6& inverse = body_block_[node.index];
+  invert_body_block(inverse);
+  if (node.parent < 0) return;
+  const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+  const Jac& parent_jac = joints[parent_joint].jacobian[node.side];
+  Mat63& transfer = body_transfer_[node.index];
+  transfer.noalias() = inverse * parent_jac.transpose();
+  PaddedRows(joint_block_[parent_joint].v[0]).noalias() -= parent_jac * transfer;
+}
+
+void TreeSystem::init_part_blocks(int part, const std::vector<InverseMass>& inverse_mass,
+                                  const std::vector<TreeJoint>& joints) {
   // The part's tops are reduced by its nodes (their children): their blocks start here, and
   // part 0 starts the root's (its children's sums come in the root part).
   init_blocks(segment_[part], inverse_mass, joints);
   init_blocks(tops_[part], inverse_mass, joints);
   if (part == 0) init_blocks(root_node(), inverse_mass, joints);
-  eliminate(segment_[part], inverse_mass.data(), joints);
+}
+
+void TreeSystem::factor_part(int part, const std::vector<InverseMass>& inverse_mass,
+                             const std::vector<TreeJoint>& joints) {
+  init_part_blocks(part, inverse_mass, joints);
+  eliminate<0>(segment_[part], inverse_mass.data(), joints);
 }
 
 void TreeSystem::factor_root(const std::vector<InverseMass>& inverse_mass,
                              const std::vector<TreeJoint>& joints) {
   inverse_mass_ = inverse_mass.data();
-  eliminate(root_part(), inverse_mass.data(), joints);
+  eliminate<0>(root_part(), inverse_mass.data(), joints);
 }
 
 void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
@@ -534,10 +558,10 @@ void TreeSystem::factor(const std::vector<InverseMass>& inverse_mass,
   factor_root(inverse_mass, joints);
 }
 
-template <class Products>
+template <int Columns, class Products>
 [[gnu::always_inline]] inline void TreeSystem::eliminate_link_with(const TreeNode& node,
                                                                    Products& products) {
-  Eigen::Matrix3d* parent_block = nullptr;
+  Padded3* parent_block = nullptr;
   Row3 k_pp[3];
   if (node.parent >= 0) {
     parent_block = &joint_block_[order_[static_cast<std::size_t>(node.parent)].index];
@@ -545,23 +569,36 @@ template <class Products>
   }
   const std::int32_t child = body_child_[node.index];
   if (child == kNoChild) {
-    if (parent_block != nullptr) subtract_rows(k_pp, *parent_block);
+    if (parent_block != nullptr) subtract_rows(k_pp, parent_block->v);
+    return;  // a leaf link has no forward step
+  }
+  Row3 e[3], e_inverse[3];  // E^-1 by columns
+  products.child_products(e);
+  const Padded3& child_block = joint_block_[static_cast<std::size_t>(child)];
+  for (int i = 0; i < 3; ++i) e[i] -= load4(child_block.v[i]);
+  invert_columns(e, e_inverse);
+  for (int i = 0; i < 3; ++i) store4(link_e_inverse_[node.index].v[i], e_inverse[i]);
+  double* r_c = nullptr;
+  if constexpr (Columns > 0) r_c = joint_rhs<Columns>()[static_cast<std::size_t>(child)].data();
+  if (parent_block == nullptr) {
+    link_forward<Columns>(r_c, nullptr, nullptr, e_inverse);
     return;
   }
-  Row3 e[3], e_inverse[3];
-  products.child_products(e);
-  const double* child_block = joint_block_[static_cast<std::size_t>(child)].data();
-  for (int i = 0; i < 3; ++i) e[i] -= row_of(child_block, i, 3);
-  invert(e, e_inverse);
-  store_rows(e_inverse, link_e_inverse_[node.index]);
-  if (parent_block == nullptr) return;
   Row3 k_cp[3], k_cp_columns[3], y[3];
   products.across_products(k_cp, k_cp_columns);
-  for (int i = 0; i < 3; ++i) y[i] = combine(e_inverse[i], k_cp);
-  store_rows(y, link_y_[node.index]);
+  for (int i = 0; i < 3; ++i) {
+    y[i] = combine(Row3{e_inverse[0][i], e_inverse[1][i], e_inverse[2][i], 0.0}, k_cp);
+  }
+  Row3 y_columns[3];
+  transpose(y, y_columns);
+  for (int i = 0; i < 3; ++i) store4(link_y_[node.index].v[i], y_columns[i]);
   Row3 left[3];
   for (int i = 0; i < 3; ++i) left[i] = k_pp[i] - combine(k_cp_columns[i], y);
-  subtract_rows(left, *parent_block);
+  subtract_rows(left, parent_block->v);
+  if constexpr (Columns > 0) {
+    double* r_p = joint_rhs<Columns>()[order_[static_cast<std::size_t>(node.parent)].index].data();
+    link_forward<Columns>(r_c, r_p, y, e_inverse);
+  }
 }
 
 // A chain link: a body b of at most one child joint c, eliminated together with c in joint
@@ -574,6 +611,7 @@ template <class Products>
 // elimination along a chain, one dependent 3x3 inverse per link. Kept: E^-1 and, below a
 // parent, y. W is diag(w I, I_w) (the solver's mass record): its zero blocks are not
 // multiplied.
+template <int Columns>
 void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
                                 const std::vector<TreeJoint>& joints) {
   const TreeNode& node = order_[k];
@@ -592,10 +630,10 @@ void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
           : &joints[static_cast<std::size_t>(child)].jacobian[body_child_side_[node.index]];
   if (ball_link(node, joints)) {
     BallLinkProducts products{mass.linear, inertia_w, parent_jac, child_jac};
-    eliminate_link_with(node, products);
+    eliminate_link_with<Columns>(node, products);
   } else {
     GeneralLinkProducts products{mass.linear, inertia_w, parent_jac, child_jac};
-    eliminate_link_with(node, products);
+    eliminate_link_with<Columns>(node, products);
   }
 }
 
@@ -630,44 +668,43 @@ void TreeSystem::init_rhs(Span span, const std::vector<TreeJoint>& joints, const
 
 template <int Columns>
 void TreeSystem::forward(Span span, const std::vector<TreeJoint>& joints) {
+  // Leaves first. A link's child joint keeps g = E^-1 r_c in its right side.
+  for (std::size_t k = span.begin; k < span.end; ++k) forward_node<Columns>(k, joints);
+}
+
+template <int Columns>
+void TreeSystem::forward_node(std::size_t k, const std::vector<TreeJoint>& joints) {
   using JointColumns = Eigen::Matrix<double, 3, Columns>;
   auto& body_rhs = this->body_rhs<Columns>();
   auto& joint_rhs = this->joint_rhs<Columns>();
-  // Leaves first. A link's child joint keeps g = E^-1 r_c in its right side.
-  for (std::size_t k = span.begin; k < span.end; ++k) {
-    const TreeNode& node = order_[k];
-    const bool root = node.parent < 0;
-    if (node.joint) {
-      if (root || under_link(node)) continue;
-      const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
-      const Jac& jac = joints[node.index].jacobian[node.side];
-      const JointColumns scaled = joint_inverse_[node.index] * joint_rhs[node.index];
-      body_rhs[parent.index].noalias() -= jac.transpose() * scaled;
-    } else if (is_link(node)) {
-      const std::int32_t child = body_child_[node.index];
-      if (child == kNoChild) continue;
-      double* r_c = joint_rhs[static_cast<std::size_t>(child)].data();
-      const double* e = link_e_inverse_[node.index].data();
-      // Loaded once for every right side: the stores below may alias them for the compiler.
-      // A root link has no y (eliminate_link).
-      Row3 y_rows[3] = {};
-      if (!root) {
-        const double* y = link_y_[node.index].data();
-        for (int i = 0; i < 3; ++i) y_rows[i] = row_of(y, i, 3);
-      }
-      const Row3 e_columns[3] = {load3(e), load3(e + 3), load3(e + 6)};
-      double* r_p =
-          root ? nullptr : joint_rhs[order_[static_cast<std::size_t>(node.parent)].index].data();
-      for (int column = 0; column < Columns; ++column) {
-        const Row3 r = load3(r_c + 3 * column);
-        if (r_p != nullptr) store3(r_p + 3 * column, load3(r_p + 3 * column) - combine(r, y_rows));
-        store3(r_c + 3 * column, combine(r, e_columns));
-      }
-    } else if (!root) {
-      const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
-      joint_rhs[parent_joint].noalias() -=
-          body_transfer_[node.index].transpose() * body_rhs[node.index];
+  const TreeNode& node = order_[k];
+  const bool root = node.parent < 0;
+  if (node.joint) {
+    if (root || under_link(node)) return;
+    const TreeNode& parent = order_[static_cast<std::size_t>(node.parent)];
+    const Jac& jac = joints[node.index].jacobian[node.side];
+    const JointColumns scaled = joint_inverse_[node.index] * joint_rhs[node.index];
+    body_rhs[parent.index].noalias() -= jac.transpose() * scaled;
+  } else if (is_link(node)) {
+    const std::int32_t child = body_child_[node.index];
+    if (child == kNoChild) return;
+    // The factor's E^-1 and y as eliminate_link left them (a root link has no y).
+    const Padded3& e = link_e_inverse_[node.index];
+    const Row3 e_columns[3] = {load4(e.v[0]), load4(e.v[1]), load4(e.v[2])};
+    Row3 y_rows[3] = {};
+    if (!root) {
+      const Padded3& y = link_y_[node.index];
+      const Row3 y_columns[3] = {load4(y.v[0]), load4(y.v[1]), load4(y.v[2])};
+      transpose(y_columns, y_rows);
     }
+    double* r_p =
+        root ? nullptr : joint_rhs[order_[static_cast<std::size_t>(node.parent)].index].data();
+    link_forward<Columns>(joint_rhs[static_cast<std::size_t>(child)].data(), r_p, y_rows,
+                          e_columns);
+  } else if (!root) {
+    const std::uint32_t parent_joint = order_[static_cast<std::size_t>(node.parent)].index;
+    joint_rhs[parent_joint].noalias() -=
+        body_transfer_[node.index].transpose() * body_rhs[node.index];
   }
 }
 
@@ -721,8 +758,7 @@ void TreeSystem::backward(Span span, const std::vector<TreeJoint>& joints,
         }
       }
       if (has_child && !root) {
-        const double* y = link_y_[node.index].data();
-        for (int i = 0; i < 3; ++i) y_columns[i] = load3(y + 3 * i);
+        for (int i = 0; i < 3; ++i) y_columns[i] = load4(link_y_[node.index].v[i]);
       }
       const double w = inverse_mass_[node.index].linear;
       const double* inertia = inverse_mass_[node.index].angular.data();
@@ -774,13 +810,27 @@ void TreeSystem::negate_impulses(Span span,
 }
 
 template <int Columns>
-void TreeSystem::solve_up(int part, const std::vector<TreeJoint>& joints, const MoreSides& more) {
+void TreeSystem::init_part_rhs(int part, const std::vector<TreeJoint>& joints,
+                               const MoreSides& more) {
   // The part's tops take its nodes' right sides, and part 0 starts the root's (its children's
   // sums come in the root part).
   init_rhs<Columns>(segment_[part], joints, more);
   init_rhs<Columns>(tops_[part], joints, more);
   if (part == 0) init_rhs<Columns>(root_node(), joints, more);
+}
+
+template <int Columns>
+void TreeSystem::solve_up(int part, const std::vector<TreeJoint>& joints, const MoreSides& more) {
+  init_part_rhs<Columns>(part, joints, more);
   forward<Columns>(segment_[part], joints);
+}
+
+template <int Columns>
+void TreeSystem::factor_solve_up(int part, const std::vector<InverseMass>& inverse_mass,
+                                 const std::vector<TreeJoint>& joints, const MoreSides& more) {
+  init_part_blocks(part, inverse_mass, joints);
+  init_part_rhs<Columns>(part, joints, more);
+  eliminate<Columns>(segment_[part], inverse_mass.data(), joints);
 }
 
 template <int Columns>
@@ -788,6 +838,17 @@ void TreeSystem::solve_root(const std::vector<TreeJoint>& joints,
                             std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
                             std::vector<Eigen::Matrix<double, 3, Columns>>& dp) {
   forward<Columns>(root_part(), joints);
+  backward<Columns>(root_part(), joints, dv, dp);
+  negate_impulses<Columns>(root_node(), dp);
+}
+
+template <int Columns>
+void TreeSystem::factor_solve_root(const std::vector<InverseMass>& inverse_mass,
+                                   const std::vector<TreeJoint>& joints,
+                                   std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                                   std::vector<Eigen::Matrix<double, 3, Columns>>& dp) {
+  inverse_mass_ = inverse_mass.data();
+  eliminate<Columns>(root_part(), inverse_mass.data(), joints);
   backward<Columns>(root_part(), joints, dv, dp);
   negate_impulses<Columns>(root_node(), dp);
 }
@@ -801,13 +862,18 @@ void TreeSystem::solve_down(int part, const std::vector<TreeJoint>& joints,
   negate_impulses<Columns>(tops_[part], dp);
 }
 
-#define SOFTSTEP_TREE_SOLVE_COLUMNS(C)                                                         \
-  template void TreeSystem::solve_up<C>(int, const std::vector<TreeJoint>&, const MoreSides&); \
-  template void TreeSystem::solve_root<C>(const std::vector<TreeJoint>&,                       \
-                                          std::vector<Eigen::Matrix<double, 6, C>>&,           \
-                                          std::vector<Eigen::Matrix<double, 3, C>>&);          \
-  template void TreeSystem::solve_down<C>(int, const std::vector<TreeJoint>&,                  \
-                                          std::vector<Eigen::Matrix<double, 6, C>>&,           \
+#define SOFTSTEP_TREE_SOLVE_COLUMNS(C)                                                           \
+  template void TreeSystem::solve_up<C>(int, const std::vector<TreeJoint>&, const MoreSides&);   \
+  template void TreeSystem::factor_solve_up<C>(int, const std::vector<InverseMass>&,             \
+                                               const std::vector<TreeJoint>&, const MoreSides&); \
+  template void TreeSystem::factor_solve_root<C>(                                                \
+      const std::vector<InverseMass>&, const std::vector<TreeJoint>&,                            \
+      std::vector<Eigen::Matrix<double, 6, C>>&, std::vector<Eigen::Matrix<double, 3, C>>&);     \
+  template void TreeSystem::solve_root<C>(const std::vector<TreeJoint>&,                         \
+                                          std::vector<Eigen::Matrix<double, 6, C>>&,             \
+                                          std::vector<Eigen::Matrix<double, 3, C>>&);            \
+  template void TreeSystem::solve_down<C>(int, const std::vector<TreeJoint>&,                    \
+                                          std::vector<Eigen::Matrix<double, 6, C>>&,             \
                                           std::vector<Eigen::Matrix<double, 3, C>>&);
 SOFTSTEP_TREE_SOLVE_COLUMNS(1)
 SOFTSTEP_TREE_SOLVE_COLUMNS(2)

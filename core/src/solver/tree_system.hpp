@@ -118,6 +118,19 @@ class TreeSystem {
                   std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
                   std::vector<Eigen::Matrix<double, 3, Columns>>& dp);
 
+  // factor_part and solve_up in one pass over the part's nodes, and factor_root and solve_root:
+  // each node's forward step right after its elimination, a chain link's from its E^-1 and y
+  // still in registers (the same operations in the same order: the same bits as the calls
+  // apart). The solver's passes factor and solve at once.
+  template <int Columns>
+  void factor_solve_up(int part, const std::vector<InverseMass>& inverse_mass,
+                       const std::vector<TreeJoint>& joints, const MoreSides& more);
+  template <int Columns>
+  void factor_solve_root(const std::vector<InverseMass>& inverse_mass,
+                         const std::vector<TreeJoint>& joints,
+                         std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
+                         std::vector<Eigen::Matrix<double, 3, Columns>>& dp);
+
   // All parts on one thread.
   void factor(const std::vector<InverseMass>& inverse_mass, const std::vector<TreeJoint>& joints);
   void solve(const std::vector<TreeJoint>& joints, std::vector<Vec6>& dv,
@@ -142,11 +155,20 @@ class TreeSystem {
   Span root_node() const { return {order_.size() - 1, order_.size()}; }
   void init_blocks(Span span, const std::vector<InverseMass>& inverse_mass,
                    const std::vector<TreeJoint>& joints);
+  void init_part_blocks(int part, const std::vector<InverseMass>& inverse_mass,
+                        const std::vector<TreeJoint>& joints);
+  // Columns > 0: with each node's forward step (factor_solve_up).
+  template <int Columns>
   void eliminate(Span span, const InverseMass* inverse_mass, const std::vector<TreeJoint>& joints);
+  void eliminate_node(std::size_t k, const std::vector<TreeJoint>& joints);  // not a chain link
   template <int Columns>
   void init_rhs(Span span, const std::vector<TreeJoint>& joints, const MoreSides& more);
   template <int Columns>
+  void init_part_rhs(int part, const std::vector<TreeJoint>& joints, const MoreSides& more);
+  template <int Columns>
   void forward(Span span, const std::vector<TreeJoint>& joints);
+  template <int Columns>
+  void forward_node(std::size_t k, const std::vector<TreeJoint>& joints);
   template <int Columns>
   void backward(Span span, const std::vector<TreeJoint>& joints,
                 std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
@@ -165,11 +187,12 @@ class TreeSystem {
   bool under_link(const TreeNode& node) const {
     return node.parent >= 0 && is_link(order_[static_cast<std::size_t>(node.parent)]);
   }
+  template <int Columns>
   void eliminate_link(std::size_t k, const InverseMass* inverse_mass,
                       const std::vector<TreeJoint>& joints);
   // The elimination proper, with the link's products formed by `products` (tree_system.cpp:
-  // from the general blocks, or from ball joints' arms).
-  template <class Products>
+  // from the general blocks, or from ball joints' arms), and with Columns > 0 its forward step.
+  template <int Columns, class Products>
   void eliminate_link_with(const TreeNode& link, Products& products);
   // A chain link whose parent and child joints (those it has) are ball joints
   // (TreeJoint::ball): its factor and solve steps read their signs and arms.
@@ -195,7 +218,18 @@ class TreeSystem {
   template <int Columns>
   using JointSides = std::vector<Eigen::Matrix<double, 3, Columns>>;
   std::tuple<BodySides<1>, BodySides<2>, BodySides<3>> body_rhs_;  // per number of columns
-  std::vector<Eigen::Matrix3d> joint_block_;    // D, the reduced joint block
+  // Three rows or columns of a 3x3 block, each padded to four doubles (the last 0): one vector
+  // load or store each in a chain link's elimination and solve, where col-major a row took
+  // three scalar loads or stores.
+  struct alignas(32) Padded3 {
+    double v[3][4] = {};
+  };
+  using PaddedRows =
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>, 0, Eigen::OuterStride<4>>;
+  // D, the reduced joint block, by rows: a chain link reduces its parent joint's and reads its
+  // child joint's a row at a time (scalar by scalar col-major, 2 % of the whip's exact step,
+  // Zen 5).
+  std::vector<Padded3> joint_block_;
   std::vector<Eigen::Matrix3d> joint_inverse_;  // D^-1
   std::tuple<JointSides<1>, JointSides<2>, JointSides<3>> joint_rhs_;
   // Per body its one child joint (a chain link), kNoChild (a leaf) or kManyChildren; and the
@@ -210,8 +244,8 @@ class TreeSystem {
   // island to hold in cache); per chain link (a body of at most one child joint;
   // tree_system.cpp, eliminate_link): E^-1 and y = E^-1 K_cp.
   const InverseMass* inverse_mass_ = nullptr;
-  std::vector<Eigen::Matrix3d> link_e_inverse_;
-  std::vector<Eigen::Matrix3d> link_y_;
+  std::vector<Padded3> link_e_inverse_;  // by columns
+  std::vector<Padded3> link_y_;          // by columns
 };
 
 }  // namespace softstep::solver
