@@ -34,6 +34,12 @@ void expect_tree_solve_matches_reference(const World& world) {
     if (rigid == 1) system.softness.setZero();
     const reference::ExactSolution exact = reference::solve_exact(system);
     const reference::ExactSolution tree = reference::solve_tree(system);
+    // The step's passes factor and solve in one sweep (TreeSystem::factor_solve_up): the same
+    // operations, the same bits.
+    const reference::ExactSolution swept =
+        reference::solve_tree(system, reference::TreeSweep::OneSweep);
+    EXPECT_TRUE(swept.impulse == tree.impulse) << "rigid " << rigid;
+    EXPECT_TRUE(swept.velocity == tree.velocity) << "rigid " << rigid;
     ASSERT_GT(exact.impulse.norm(), 0.0);
     EXPECT_LT(relative(tree.impulse, exact.impulse), 1e-5) << "rigid " << rigid;
     EXPECT_LT(relative(tree.velocity - system.velocity_before,

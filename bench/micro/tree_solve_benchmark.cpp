@@ -1,11 +1,12 @@
 // The exact mode's tree solve alone (core/src/solver/tree_system.hpp): the factor, a solve of
 // one right side (the solve pass) and of two (the relax pass: velocities and position
-// projection together) on a chain of ball joints hanging from the world, 1,000 and 10,000
-// links. The figure to read is ns_per_row: CPU time per constraint row (3 per ball joint) for
-// one factor or one solve, the same system again and again (hot in cache as far as it fits:
-// 1,000 links do, 10,000 mostly not). Chains only: every body is a chain link, so the path of a
-// body of many children (a ragdoll's torso) is not in these figures. Double precision, the
-// same at every SIMD width: the chain's elimination is a sequence of dependent 3x3 steps.
+// projection together), and a factor with two right sides apart and in one sweep, on a chain
+// of ball joints hanging from the world, 1,000 and 10,000 links. The figure to read is
+// ns_per_row: CPU time per constraint row (3 per ball joint) for one factor or one solve, the
+// same system again and again (hot in cache as far as it fits: 1,000 links do, 10,000 mostly
+// not). Chains only: every body is a chain link, so the path of a body of many children (a
+// ragdoll's torso) is not in these figures. Double precision, the same at every SIMD width:
+// the chain's elimination is a sequence of dependent 3x3 steps.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -96,9 +97,44 @@ void solve_two_sides(benchmark::State& state) {
   report_rows(state, links);
 }
 
+// A relax pass's factor and its two right sides, as the factor then the solve, and as the
+// step's passes run them (TreeSystem::factor_solve_up: each node's forward step right after its
+// elimination): the same bits, one sweep fewer.
+void factor_then_solve_two_sides(benchmark::State& state) {
+  const int links = static_cast<int>(state.range(0));
+  Chain chain(links);
+  std::vector<Vec6x2> dv;
+  std::vector<Vec3x2> dp;
+  for (auto _ : state) {
+    chain.system.factor(chain.inverse_mass, chain.joints);
+    chain.system.solve(chain.joints, chain.second, dv, dp);
+    benchmark::DoNotOptimize(dp.data());
+  }
+  report_rows(state, links);
+}
+
+void factor_and_solve_two_sides_in_one_sweep(benchmark::State& state) {
+  const int links = static_cast<int>(state.range(0));
+  Chain chain(links);
+  std::vector<Vec6x2> dv(static_cast<std::size_t>(links));
+  std::vector<Vec3x2> dp(static_cast<std::size_t>(links));
+  const MoreSides more = {&chain.second};
+  for (auto _ : state) {
+    chain.system.factor_solve_up<2>(0, chain.inverse_mass, chain.joints, more);
+    chain.system.factor_solve_up<2>(1, chain.inverse_mass, chain.joints, more);
+    chain.system.factor_solve_root<2>(chain.inverse_mass, chain.joints, dv, dp);
+    chain.system.solve_down<2>(0, chain.joints, dv, dp);
+    chain.system.solve_down<2>(1, chain.joints, dv, dp);
+    benchmark::DoNotOptimize(dp.data());
+  }
+  report_rows(state, links);
+}
+
 BENCHMARK(factor)->Arg(1000)->Arg(10000);
 BENCHMARK(solve_one_side)->Arg(1000)->Arg(10000);
 BENCHMARK(solve_two_sides)->Arg(1000)->Arg(10000);
+BENCHMARK(factor_then_solve_two_sides)->Arg(1000)->Arg(10000);
+BENCHMARK(factor_and_solve_two_sides_in_one_sweep)->Arg(1000)->Arg(10000);
 
 }  // namespace
 }  // namespace softstep::solver

@@ -61,7 +61,10 @@ ExactSolution solve_exact(const SoftSystem& system);
 // DirectForTrees, core/src/solver/tree_system.hpp): equal to solve_exact up to rounding when
 // the joints form a tree. Throws std::invalid_argument when they do not (a loop through
 // movable bodies, or more than one joint to static or kinematic bodies in one island).
-ExactSolution solve_tree(const SoftSystem& system);
+// Separate: the factor, then the solve; OneSweep: each node's forward step right after its
+// elimination, as the step's exact passes run it (the same bits, promised and tested).
+enum class TreeSweep { Separate, OneSweep };
+ExactSolution solve_tree(const SoftSystem& system, TreeSweep sweep = TreeSweep::Separate);
 
 // J v + bias + Gamma P per row, m/s: zero for the exact solution.
 VectorX row_residual(const SoftSystem& system, const VectorX& velocity, const VectorX& impulse);

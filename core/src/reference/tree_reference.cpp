@@ -17,7 +17,7 @@ bool ball_rows(const solver::Jac& jac, double sign) {
 
 }  // namespace
 
-ExactSolution solve_tree(const SoftSystem& s) {
+ExactSolution solve_tree(const SoftSystem& s, TreeSweep sweep) {
   // Nodes: the bodies of finite mass.
   const int blocks = static_cast<int>(s.body_slots.size());
   std::vector<std::int32_t> node(static_cast<std::size_t>(blocks), -1);
@@ -78,7 +78,17 @@ ExactSolution solve_tree(const SoftSystem& s) {
   }
   std::vector<solver::Vec6> dv;
   std::vector<Eigen::Vector3d> dp;
-  system.solve(inverse_mass, joints, dv, dp);
+  if (sweep == TreeSweep::Separate) {
+    system.solve(inverse_mass, joints, dv, dp);
+  } else {
+    dv.resize(inverse_mass.size());
+    dp.resize(joints.size());
+    system.factor_solve_up<1>(0, inverse_mass, joints, {});
+    system.factor_solve_up<1>(1, inverse_mass, joints, {});
+    system.factor_solve_root<1>(inverse_mass, joints, dv, dp);
+    system.solve_down<1>(0, joints, dv, dp);
+    system.solve_down<1>(1, joints, dv, dp);
+  }
   ExactSolution x;
   x.impulse.resize(s.rows());
   row = 0;
