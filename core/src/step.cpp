@@ -617,9 +617,10 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       if (planned(PlanStage::TreeRelax)) {
         stage(Stage::Relax, [&] {
           // The next sub-step's solve pass folded into this one where nothing but the
-          // velocity integration's additions (gravity, forces, torques; not damping:
-          // TreeSolver::Pass::fold_next) changes the tree islands' velocities before it.
-          const bool may_fold = !has_contacts && !damping && !refreshes_before(sub + 1) &&
+          // velocity integration's additions (gravity, forces, torques; not damping: an island
+          // with a damped body does not fold, TreeSolver::Pass::fold_next) changes the tree
+          // islands' velocities before it.
+          const bool may_fold = !has_contacts && !refreshes_before(sub + 1) &&
                                 !joints_run(PlanStage::Solve) && !joints_run(PlanStage::WarmStart);
           w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
                        solver::TreeSolver::Pass::relax(sub, s.substeps, may_fold, gravity, torque),

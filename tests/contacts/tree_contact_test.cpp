@@ -201,5 +201,70 @@ INSTANTIATE_TEST_SUITE_P(TreeContacts, FoldedSolvePass,
                            return std::string(param.param.name);
                          });
 
+// Damping takes the fold from the islands that have a damped body only (TreeSolver::Island::
+// damped): a chain whose links are undamped moves bit for bit the same whether a body elsewhere
+// is damped or not, stepped stage by stage (the other body free: not in a tree island) or island
+// by island (the other bodies a damped pair, a tree island of their own). With damping decided
+// for the whole world, as before 2026-11-29 11:30, the chain lost its fold to the damped body
+// elsewhere and moved 2.9e-6 m apart in a second (the folded test above).
+class DampedBodyElsewhere : public ::testing::TestWithParam<bool> {};
+
+TEST_P(DampedBodyElsewhere, LeavesTheChainItsFold) {
+  const bool pair = GetParam();
+  WorldSettings s = settings_without_sleep();
+  s.solver = SolverMode::DirectForTrees;
+  struct Scene {
+    World world;
+    BodyId other;
+    scenes::ChainScene chain;
+  };
+  const auto make = [&](double damping) {
+    Scene scene{World(s), {}, {}};
+    BodyDef b;
+    b.position = {0.0, 0.0, 10.0};
+    b.linear_velocity = {1.0, 2.0, 0.0};
+    b.angular_velocity = {0.0, 0.0, 3.0};
+    b.inertia = solid_sphere_inertia(1.0, kRadius);
+    b.linear_damping = damping;
+    b.angular_damping = damping;
+    scene.other = scene.world.create_body(b);
+    if (pair) {
+      b.position.x() += 0.5;
+      BallJointDef j;
+      j.body_a = scene.other;
+      j.body_b = scene.world.create_body(b);
+      j.local_anchor_a = {0.25, 0.0, 0.0};
+      j.local_anchor_b = {-0.25, 0.0, 0.0};
+      scene.world.create_ball_joint(j);
+    }
+    scenes::ChainOptions o;
+    o.links = 20;
+    o.link_masses = std::vector<double>(19, 1.0);
+    o.link_masses.push_back(100.0);
+    scene.chain = scenes::build_chain(scene.world, o);
+    return scene;
+  };
+  Scene damped = make(1.0), undamped = make(0.0);
+  for (int i = 0; i < 60; ++i) {
+    damped.world.step(kDt);
+    undamped.world.step(kDt);
+  }
+  ASSERT_EQ(damped.world.step_plan().tree_islands, pair ? 2u : 1u);
+  // The damping did act where it was asked.
+  EXPECT_NE(damped.world.body(damped.other).position, undamped.world.body(undamped.other).position);
+  const std::vector<BodyId>& links = damped.chain.links.front();
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    EXPECT_EQ(damped.world.body(links[k]).position,
+              undamped.world.body(undamped.chain.links.front()[k]).position)
+        << "link " << k;
+  }
+  EXPECT_LT(damped.world.body(links.back()).position.y(), -2.0);  // fallen and swung
+}
+
+INSTANTIATE_TEST_SUITE_P(TreeContacts, DampedBodyElsewhere, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& param) {
+                           return std::string(param.param ? "ADampedPair" : "AFreeDampedBody");
+                         });
+
 }  // namespace
 }  // namespace softstep::test

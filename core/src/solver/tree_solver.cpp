@@ -288,6 +288,8 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     }
     for (std::uint32_t b = 0; b < island.bodies.size(); ++b) {
       island.parts[island.system.body_part(b)].bodies.push_back(b);
+      const BodySlot& body = bodies[island.bodies[b]];
+      island.damped |= body.linear_damping > 0.0 || body.angular_damping > 0.0;
     }
     for (Part& part : island.parts) {
       // The part's bodies are in slot order: a run of kBodyBlock consecutive records is one
@@ -394,7 +396,9 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
     }
     if (whole.relax) {
       crew.sync();  // and both bodies' positions
-      Pass relax = Pass::relax(sub, whole.substeps, !whole.damping, whole.gravity, whole.torque);
+      // Nothing but the integration changes the velocities between (an island stepped whole);
+      // an island with a damped body does not fold (Island::damped).
+      Pass relax = Pass::relax(sub, whole.substeps, true, whole.gravity, whole.torque);
       relax.add_impulses = last;
       solve_island(island, joints, bodies, sb, lanes, ctx, relax, crew);
     }
@@ -429,7 +433,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   }
   // A relax pass that folds the next sub-step's solve pass in solves three right sides, or
   // two where that pass's impulses are not read (Pass::fold_apart).
-  const bool fold = !with_bias && which.fold_next;
+  const bool fold = !with_bias && which.fold_next && !island.damped;
   const bool fold_apart = fold && which.fold_apart;
   // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
   // the bodies have moved only by the position projection since. (The lead writes the flags

@@ -78,12 +78,14 @@ class TreeSolver {
     // and adds that velocity change's constraint response now: the next sub-step's solve pass
     // then has nothing left to do but hand over its impulses. For a sub-step whose velocities
     // only the integration changes before its solve pass (no contact, no Gauss-Seidel pass over
-    // these joints, no inertia refresh: step.cpp), and adds to them only (no damping: it scales
-    // the velocities this pass leaves, linear and angular by their own factors, body by body,
-    // and J of what it takes off is not known until this pass has solved; 20 links with linear or
+    // these joints, no inertia refresh: step.cpp), and adds to them only: an island with a
+    // damped body does not fold, whatever the pass says (Island::damped; damping scales the
+    // velocities this pass leaves, linear and angular by their own factors, body by body, and J
+    // of what it takes off is not known until this pass has solved; 20 links with linear or
     // angular damping of 1/s ended 8.1e-5 / 6.6e-5 m from the one solved sub-step by sub-step,
-    // 30-50x what the fold leaves without damping). The velocities it leaves are not those of
-    // a sub-step's end, so never for a step's last sub-step.
+    // 30-50x what the fold leaves without damping; the damping stage scales an undamped body's
+    // velocities by exactly 1). The velocities it leaves are not those of a sub-step's end, so
+    // never for a step's last sub-step.
     bool fold_next = false;
     bool gravity = false, torque = false;
     // With fold_next: whether the folded solve pass's impulses are read, which a sub-step's
@@ -182,6 +184,10 @@ class TreeSolver {
     // did so without its own column for it (Pass::fold_apart false: no impulses to hand over).
     bool folded = false;
     bool folded_together = false;
+    // A body of the island is damped (linear or angular, fixed at its creation): its relax
+    // passes do not fold the next sub-step's solve pass in (Pass::fold_next). Per island, so
+    // that one damped body elsewhere does not cost every island its fold.
+    bool damped = false;
     // Per part, the largest joint gap the relax pass's last check left (its Newton steps).
     double worst[2] = {0.0, 0.0};
     TreeSystem system;
