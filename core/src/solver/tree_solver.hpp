@@ -180,9 +180,10 @@ class TreeSolver {
     std::vector<Eigen::Matrix<double, 6, 3>> dv_triple;
     std::vector<Eigen::Matrix<double, 3, 3>> dp_triple;
     std::vector<Eigen::Vector3d> next_change;
-    // The last relax pass folded the next sub-step's solve pass in (Pass::fold_next), and
-    // did so without its own column for it (Pass::fold_apart false: no impulses to hand over).
+    // The last relax pass folded the next sub-step's solve pass in (Pass::fold_next).
     bool folded = false;
+    // It did so without a column of its own for it (Pass::fold_apart false): no impulses to
+    // hand over.
     bool folded_together = false;
     // A body of the island is damped (linear or angular, fixed at its creation): its relax
     // passes do not fold the next sub-step's solve pass in (Pass::fold_next). Per island, so

@@ -321,22 +321,15 @@ using Row3 = FourDoubles;
 }
 
 // A ball joint's rows against one body, J = [s I, [a]x] (s = -1 on side a, +1 on side b; a =
-// -s r for the anchor's arm r: TreeJoint::ball), read back from the block: s and a, and a's
-// elements turned for its cross products.
+// -s r for the anchor's arm r: TreeJoint::ball), read back from the block: s and a.
 struct BallSide {
   double s = 0.0;
-  Row3 a{}, a_yzx{}, a_zxy{};
+  Row3 a{};
 };
 
 [[gnu::always_inline]] inline BallSide ball_side(const Jac& jac) {
   const double* j = jac.data();  // col-major: (i, c) at i + 3 c
-  const Row3 a{j[2 + 3 * 4], j[0 + 3 * 5], j[1 + 3 * 3], 0.0};
-  return {j[0], a, yzx(a), zxy(a)};
-}
-
-// l x a for a ball side's arm a (-[a]x l, the angular half of J^T l).
-[[gnu::always_inline]] inline Row3 cross_arm(const Row3& l, const BallSide& side) {
-  return multiply_add(yzx(l), side.a_zxy, -(zxy(l) * side.a_yzx));
+  return {j[0], Row3{j[2 + 3 * 4], j[0 + 3 * 5], j[1 + 3 * 3], 0.0}};
 }
 
 // The columns of I_w [a]x, I_w (a x e_k): two of I_w's columns each (I_w symmetric: its rows).
@@ -354,9 +347,7 @@ struct BallSide {
   for (int column = 0; column < 3; ++column) {
     Row3 diagonal{0.0, 0.0, 0.0, 0.0};
     diagonal[column] = sw;
-    // a x c = a.yzx c.zxy - a.zxy c.yzx
-    const Row3 across = multiply_add(x.a_yzx, zxy(c[column]), -(x.a_zxy * yzx(c[column])));
-    k[column] = diagonal - across;
+    k[column] = diagonal - cross(x.a, c[column]);
   }
 }
 
@@ -769,7 +760,7 @@ void TreeSystem::backward(Span span, const std::vector<TreeJoint>& joints,
           l_p = load3(dp[parent].data() + 3 * column);
           if (ball) {
             linear = parent_ball.s * l_p;
-            angular = cross_arm(l_p, parent_ball);
+            angular = cross(l_p, parent_ball.a);  // l x a = -[a]x l
           } else {
             linear += combine(l_p, parent_rows);
             angular += combine(l_p, parent_rows + 3);
@@ -781,7 +772,7 @@ void TreeSystem::backward(Span span, const std::vector<TreeJoint>& joints,
           store3(dp[c].data() + 3 * column, l);
           if (ball) {
             linear = multiply_add(child_ball.s, l, linear);
-            angular += cross_arm(l, child_ball);
+            angular += cross(l, child_ball.a);
           } else {
             linear = combine_onto(l, child_rows, linear);
             angular = combine_onto(l, child_rows + 3, angular);
