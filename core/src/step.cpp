@@ -588,11 +588,13 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       }
       if (planned(PlanStage::TreeSolve)) {
         stage(Stage::Solve, [&] {
-          // The masses change at the sub-steps where the inertia is refreshed.
-          const bool same_masses = sub > 0 && !refreshes_before(sub);
+          // The masses change at the sub-steps where the inertia is refreshed (a new factor),
+          // and at a step's start (the pass re-reads them, TreeSolver::Pass). A capture
+          // compares the first sub-step's solve with the reference solve of its own system:
+          // with a factor of its own.
+          const bool reuse = sub == 0 ? !capturing : !refreshes_before(sub);
           w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
-                       {.with_bias = true, .step_start = sub == 0,
-                        .reuse_relax_factor = same_masses},
+                       {.with_bias = true, .step_start = sub == 0, .reuse_relax_factor = reuse},
                        share);
           solver::team_barrier(share);
         });

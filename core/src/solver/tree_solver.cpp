@@ -178,6 +178,20 @@ template <int N>
   }
 }
 
+// J v of joint j's rows at anchors r_a, r_b (`separation` apart), the rows not stored: a solve
+// pass that reuses a factor keeps that factor's Jacobians in the rows (Pass::reuse_relax_factor).
+// A ball joint's as fill_jacobians_times forms them (the same bits).
+FourDoubles jacobians_times(const JointSlot& j, const Eigen::Vector3d& r_a,
+                            const Eigen::Vector3d& r_b, const Eigen::Vector3d& separation,
+                            const Vec6& va, const Vec6& vb) {
+  if (j.type == JointType::Ball) {
+    return columns_times(ball_columns(-1.0, r_a), va) + columns_times(ball_columns(1.0, r_b), vb);
+  }
+  TreeJoint rows;
+  fill_jacobians(j, r_a, r_b, separation, rows);
+  return times_vector(rows.jacobian[0], va) + times_vector(rows.jacobian[1], vb);
+}
+
 // More projections run where the first left a joint open by more than this: J dx = -C is
 // linear, and an anchor of a link turning fast moves on an arc, not along its tangent. At most
 // this many more per relax pass (each a factor and a solve; the whips need two).
@@ -388,7 +402,7 @@ void TreeSolver::whole_island(Island& island, const JointSlots& joints, const Bo
     solve_island(island, joints, bodies, sb, lanes, ctx,
                  {.with_bias = true,
                   .step_start = sub == 0,
-                  .reuse_relax_factor = sub > 0,
+                  .reuse_relax_factor = true,
                   .add_impulses = last},
                  crew);
     for (int p = crew.first_part; p < crew.end_part; ++p) {
@@ -468,11 +482,14 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   each_part([&](Part& part, int p) {
     // W = M^-1 per body from the solver's mass record (the geometric-stiffness inertia
     // included), so the exact pass and the Gauss-Seidel passes solve with the same masses.
-    // Read by a solve pass that factors: a relax pass runs after its sub-step's solve pass,
-    // with no mass record changed between (an inertia refresh comes before a sub-step's
-    // velocities; where one does, that solve pass factors), and a folded solve pass follows a
-    // relax pass with none before it either (step.cpp).
-    for (std::size_t i = 0; i < part.bodies.size() && with_bias && !reuse_factor; ++i) {
+    // Read by a solve pass that factors or starts a step (the geometric inertia is new there:
+    // a reused factor's velocity changes take the new masses, and so does the relax pass's
+    // factor after it): a relax pass runs after its sub-step's solve pass, with no mass record
+    // changed between (an inertia refresh comes before a sub-step's velocities; where one does,
+    // that solve pass factors), and a folded solve pass follows a relax pass with none before
+    // it either (step.cpp).
+    const bool read_masses = with_bias && (!reuse_factor || which.step_start);
+    for (std::size_t i = 0; i < part.bodies.size() && read_masses; ++i) {
       const std::uint32_t b = part.bodies[i];
       const simd::MassRecord& m = sb.mass[island.bodies[b] + 1];
       InverseMass& w = island.inverse_mass[b];
@@ -502,8 +519,10 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       Eigen::Vector3d c = violation(j, separation);
       FourDoubles jv;
       if (reuse_factor) {
-        // A reused factor keeps its Jacobians (the relax pass's); only C and J v are today's.
-        jv = times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
+        // A reused factor keeps its Jacobians (the relax pass's) for its solve; C is today's,
+        // and at a step's start J v too (Pass::reuse_relax_factor says why).
+        jv = which.step_start ? jacobians_times(j, r_a, r_b, separation, va, vb)
+                              : times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
       } else if (fold) {
         const Vec6 a[2] = {va, next_change(t.body[0], ia)}, b[2] = {vb, next_change(t.body[1], ib)};
         FourDoubles products[2];
