@@ -174,8 +174,6 @@ class TreeSystem {
                 std::vector<Eigen::Matrix<double, 6, Columns>>& dv,
                 std::vector<Eigen::Matrix<double, 3, Columns>>& dp);
   template <int Columns>
-  void negate_impulses(Span span, std::vector<Eigen::Matrix<double, 3, Columns>>& dp) const;
-  template <int Columns>
   std::vector<Eigen::Matrix<double, 6, Columns>>& body_rhs();
   template <int Columns>
   std::vector<Eigen::Matrix<double, 3, Columns>>& joint_rhs();
