@@ -512,7 +512,12 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     for (const std::uint32_t k : part.joints) {
       const JointSlot& j = joints[island.joints[k]];
       const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
-      const auto [r_a, r_b, separation] = anchors_now(k);
+      // At a step's start the bodies are where the step-start anchors were turned (their
+      // deltas the identity): the anchors as they are, the same bits as turned again.
+      const auto [r_a, r_b, separation] =
+          which.step_start ? Anchors{island.anchor_a[k], island.anchor_b[k],
+                                     island.offset[k] + (island.anchor_b[k] - island.anchor_a[k])}
+                           : anchors_now(k);
       const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
       const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
       TreeJoint& t = island.rows[k];
