@@ -497,9 +497,10 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       w.angular << m.inv_inertia[0], m.inv_inertia[3], m.inv_inertia[4], m.inv_inertia[3],
           m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
     }
-    if (which.step_start) {
-      for (const std::uint32_t k : part.joints) {
-        const JointSlot& j = joints[island.joints[k]];
+    for (const std::uint32_t k : part.joints) {
+      const JointSlot& j = joints[island.joints[k]];
+      const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
+      if (which.step_start) {
         const BodySlot& a = bodies[j.body_a];
         const BodySlot& b = bodies[j.body_b];
         island.anchor_a[k] = a.orientation * j.local_anchor_a;
@@ -508,10 +509,6 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         island.held_back[k] =
             violation_size(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
       }
-    }
-    for (const std::uint32_t k : part.joints) {
-      const JointSlot& j = joints[island.joints[k]];
-      const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
       // At a step's start the bodies are where the step-start anchors were turned (their
       // deltas the identity): the anchors as they are, the same bits as turned again.
       const auto [r_a, r_b, separation] =
