@@ -78,11 +78,12 @@ class TreeSolver {
     //   of its own. One factor a step fewer where the relax passes fold the other solve
     //   passes (the 1,000-link whip's exact step 0.47 -> 0.44 ms, Zen 5).
     // Today's J v at a step's start: the relax pass solved J v = 0 with its own Jacobians,
-    // before its projection moved the bodies, so against them this solve finds nothing to do,
-    // and velocities never solved against the Jacobians after a projection drift from the
-    // positions, step after step: the 10 links + 1e6 kg ball hard case opened to 178 m (1.3e-6
-    // of its length with today's J v; 1.1e-7 with a factor of its own). Within a step the
-    // next step's start takes that drift out.
+    // before its projection moved the bodies, so against them this solve finds nothing to do
+    // but the bias, and it is then the step's only velocity solve that meets the Jacobians
+    // after a projection. Without it the velocities drift from the positions step after step:
+    // the 10 links + 1e6 kg ball hard case, with the bias at its least, opened to 159 m
+    // (3.9e-6 of its length with today's J v; HardCaseDirect in hard_cases_test.cpp); at the
+    // default bias 9.4e-6 against 1.3e-6 with today's J v and 1.1e-7 with a factor of its own.
     bool reuse_relax_factor = false;
     // Adds the pass's impulse changes to the joints' lane impulses (whole_substeps: the last
     // sub-step's passes only).
