@@ -387,6 +387,41 @@ TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
   EXPECT_NEAR(world.joint_reading(scene.joints.back()).force.y(), 9.81, 1e-3 * 9.81);
 }
 
+// A user's edits between steps reach the first sub-step's solve pass, which solves with the
+// last step's relax factor (TreeSolver::Pass::reuse_relax_factor) and reads the masses anew. A
+// 20-link chain hanging at rest, solved exactly, its last link made 100 kg: settled again, its
+// top joint carries the new weight, (19 + 100) kg x g, and its last joint 100 kg x g (reading
+// the masses only where a pass factors, which in a world whose relax passes fold the solve
+// passes none does after the first step, it kept carrying 20 kg). Then its middle link moved
+// 0.2 m sideways (set_position), far from the factor the next step starts with: no joint opens
+// wider than that, and the joints close again (under 1e-6 m after 2 s).
+TEST(TreeSolve, EditsBetweenStepsReachTheReusedFirstSolvePass) {
+  WorldSettings settings;
+  settings.solver = SolverMode::DirectForTrees;
+  World world(settings);
+  scenes::ChainOptions o;
+  o.links = 20;
+  o.layout = scenes::ChainLayout::Hanging;
+  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  for (int i = 0; i < 30; ++i) world.step(kDt);
+  const BodyId last = scene.links.front().back();
+  world.set_mass_properties(last, 100.0, solid_sphere_inertia(100.0, o.link_radius));
+  for (int i = 0; i < 60; ++i) world.step(kDt);
+  const double weight = (19.0 + 100.0) * 9.81;
+  EXPECT_NEAR(world.joint_reading(scene.joints.front()).force.y(), weight, 1e-3 * weight);
+  EXPECT_NEAR(world.joint_reading(scene.joints.back()).force.y(), 100.0 * 9.81, 1e-3 * 981.0);
+
+  const BodyId middle = scene.links.front()[10];
+  world.set_position(middle, world.body(middle).position + Eigen::Vector3d(0.2, 0.0, 0.0));
+  double worst = 0.0;
+  for (int i = 0; i < 120; ++i) {
+    world.step(kDt);
+    worst = scenes::joint_errors(world, scene.joints).max;
+    ASSERT_LE(worst, 0.2 + 1e-6) << "step " << i;
+  }
+  EXPECT_LT(worst, 1e-6);
+}
+
 // The chain solved exactly at 1, 2, 4, 8 and 16 sub-steps for 600 steps: the worst joint gap
 // of each run at most half the one before, or `floor`.
 void expect_more_substeps_to_pay(const scenes::ChainOptions& chain, double floor) {
