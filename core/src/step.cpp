@@ -436,6 +436,7 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
     contact_solver.load(contact_step, same_layout_inputs);  // checked: it lays out every one
   }
   w.plan_contacts(contact_solver.layout());
+  if (!w.trees.empty()) w.trees.mark_contacts(contacts);
   const simd::ContactContext contact_ctx = make_contact_context(s.contact, h);
   const bool friction_while_solving = contact_friction_while_solving(s);
   // Contacts run beside the joints in the same stages: with contacts, the solve stages run
@@ -619,11 +620,11 @@ void World::step(double dt, std::span<const ContactManifold> contacts) {
       if (planned(PlanStage::TreeRelax)) {
         stage(Stage::Relax, [&] {
           // The next sub-step's solve pass folded into this one where nothing but the
-          // velocity integration's additions (gravity, forces, torques; not damping: an island
-          // with a damped body does not fold, TreeSolver::Pass::fold_next) changes the tree
-          // islands' velocities before it.
-          const bool may_fold = !has_contacts && !refreshes_before(sub + 1) &&
-                                !joints_run(PlanStage::Solve) && !joints_run(PlanStage::WarmStart);
+          // velocity integration's additions (gravity, forces, torques; not damping, nor the
+          // contact passes: an island with a damped body or in a contact does not fold,
+          // TreeSolver::Pass::fold_next) changes the tree islands' velocities before it.
+          const bool may_fold = !refreshes_before(sub + 1) && !joints_run(PlanStage::Solve) &&
+                                !joints_run(PlanStage::WarmStart);
           w.trees.pass(w.joints, w.bodies, w.solver_bodies, solver, ctx,
                        solver::TreeSolver::Pass::relax(sub, s.substeps, may_fold, gravity, torque),
                        share);

@@ -126,13 +126,17 @@ TEST(TreeContacts, ChainLyingOnTheGroundRestsWithRigidJointsAndCarriesItsWeight)
 // A relax pass folds the next sub-step's solve pass in (TreeSolver::Pass::fold_next): with its
 // own factor it solves for the velocity change the next sub-step's integration will add
 // (gravity here), which is what that solve pass would solve with the same factor; only the
-// solve pass's bias (on what the last projection left) and float rounding differ. A step given
-// contacts keeps every solve pass (step.cpp), so two worlds with the same chain (20 links of 1 kg,
-// 100 kg at the end, released horizontally, solved exactly) and, apart from it, a ball on the
-// ground, stepped with and without that ball's contact, move the chain the same way. Measured after
-// 1 s: 2.9e-6 m apart; with the gravity left out of the folded column (positions then move along
-// velocities the joints do not allow, which only the projection takes back) 7.5e-3 m. Not 0: the
-// two worlds took different paths.
+// solve pass's bias (on what the last projection left) and float rounding differ. An island
+// that a contact touches keeps every solve pass (TreeSolver::Island::contacted), so two worlds
+// with the same chain (20 links of 1 kg, 100 kg at the end, released horizontally, solved
+// exactly) and, apart from it, a ball resting on the ground, both stepped with that ball's
+// contact, one also with a contact on the chain's last link that never closes (100 m apart: it
+// applies nothing), move the chain the same way. Measured after 1 s: 1.3e-6 m apart (2.9e-6
+// before the first solve pass reused the last relax factor, 2026-11-29 13:00); with the
+// gravity left out of the folded column (positions then move along velocities the joints do
+// not allow, which only the projection takes back) 7.5e-3 m. Not 0: the two worlds took
+// different paths. (Until 2026-11-29 13:40 any contact kept every island's solve passes, and the
+// second world had only the ball's.)
 // With damping no relax pass folds (TreeSolver::Pass::fold_next: the damping scales the
 // velocities the relax pass leaves, linear and angular by different factors): the two worlds
 // then solve the chain the same way, bit for bit. Folding with damping left 1.6e-6 m at 1/s
@@ -169,9 +173,16 @@ TEST_P(FoldedSolvePass, MovesTheChainAsTheSolvePassItReplaces) {
   };
   Scene folded = make(), solved = make();
   for (int i = 0; i < 60; ++i) {
-    folded.world.step(kDt);
+    folded.world.step(
+        kDt, std::vector{sphere_on_ground(folded.world, folded.ground, folded.ball, kRadius)});
+    ContactManifold far;
+    far.body_a = solved.ground;
+    far.body_b = solved.chain.links.front().back();
+    far.friction = 0.0;
+    far.point_count = 1;
+    far.points[0].separation = 100.0;
     solved.world.step(
-        kDt, std::vector{sphere_on_ground(solved.world, solved.ground, solved.ball, kRadius)});
+        kDt, std::vector{sphere_on_ground(solved.world, solved.ground, solved.ball, kRadius), far});
   }
   ASSERT_EQ(folded.world.step_plan().tree_islands, 1u);
   ASSERT_EQ(solved.world.step_plan().tree_islands, 1u);
@@ -259,6 +270,54 @@ TEST_P(DampedBodyElsewhere, LeavesTheChainItsFold) {
         << "link " << k;
   }
   EXPECT_LT(damped.world.body(links.back()).position.y(), -2.0);  // fallen and swung
+}
+
+// Contacts take the fold from the islands they touch only (TreeSolver::Island::contacted): a
+// chain moves bit for bit the same beside a ball resting on the ground as beside a ball falling
+// free, stepped stage by stage both (the ball is not in a tree island). With contacts deciding
+// for the whole world, as before 2026-11-29 13:40, the chain lost its fold to the ball's contact
+// and moved 1.3e-6 m apart in a second (the folded test above).
+TEST(TreeContacts, AContactElsewhereLeavesTheChainItsFold) {
+  WorldSettings s = settings_without_sleep();
+  s.solver = SolverMode::DirectForTrees;
+  struct Scene {
+    World world;
+    BodyId ground, ball;
+    scenes::ChainScene chain;
+  };
+  const auto make = [&] {
+    Scene scene{World(s), {}, {}, {}};
+    scene.ground = add_ground(scene.world);
+    BodyDef b;
+    b.position = {0.0, kRadius, 10.0};
+    b.inertia = solid_sphere_inertia(1.0, kRadius);
+    scene.ball = scene.world.create_body(b);
+    scenes::ChainOptions o;
+    o.links = 20;
+    o.link_masses = std::vector<double>(19, 1.0);
+    o.link_masses.push_back(100.0);
+    scene.chain = scenes::build_chain(scene.world, o);
+    return scene;
+  };
+  Scene resting = make(), falling = make();
+  for (int i = 0; i < 60; ++i) {
+    resting.world.step(
+        kDt, std::vector{sphere_on_ground(resting.world, resting.ground, resting.ball, kRadius)});
+    falling.world.step(kDt);
+  }
+  ASSERT_EQ(resting.world.step_plan().tree_islands, 1u);
+  ASSERT_FALSE(resting.world.step_plan().tree_islands_whole);
+  ASSERT_FALSE(falling.world.step_plan().tree_islands_whole);
+  // The contact did act where it was given.
+  EXPECT_GT(resting.world.body(resting.ball).position.y(), 0.5 * kRadius);
+  EXPECT_LT(falling.world.body(falling.ball).position.y(), -1.0);
+  const std::vector<BodyId>& links = resting.chain.links.front();
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    EXPECT_EQ(resting.world.body(links[k]).position,
+              falling.world.body(falling.chain.links.front()[k]).position)
+        << "link " << k;
+  }
+  EXPECT_LT(resting.world.body(links.back()).position.y(), -2.0);  // fallen and swung
 }
 
 INSTANTIATE_TEST_SUITE_P(TreeContacts, DampedBodyElsewhere, ::testing::Values(false, true),

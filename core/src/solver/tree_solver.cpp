@@ -7,6 +7,7 @@
 #include <numeric>
 #include <type_traits>
 
+#include "softstep/contacts.hpp"
 #include "solver/four_doubles.hpp"
 #include "solver/team.hpp"
 #include "world_impl.hpp"
@@ -226,6 +227,7 @@ bool TreeSolver::shared(const Island& island, int threads) const {
 void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlots& bodies,
                        const LaneSolver& lanes) {
   islands_.clear();
+  island_of_slot_.assign(bodies.size(), -1);
   counts_ = {};
   if (mode == SolverMode::Iterative) return;
   // Islands of movable bodies over the awake joints, with a loop flag and an "only kinds the
@@ -349,7 +351,24 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     if (island.system.split()) ++counts_.split_islands;
     counts_.tree_joints += island.joints.size();
     counts_.tree_bodies += island.bodies.size();
+    for (const std::uint32_t slot : island.bodies) {
+      island_of_slot_[slot] = static_cast<std::int32_t>(islands_.size());
+    }
     islands_.push_back(std::move(island));
+  }
+}
+
+void TreeSolver::mark_contacts(std::span<const ContactManifold> manifolds) {
+  for (Island& island : islands_) island.contacted = false;
+  const auto mark = [&](BodyId body) {
+    // A body created since the islands were built is in none of them.
+    if (body.index < island_of_slot_.size() && island_of_slot_[body.index] >= 0) {
+      islands_[static_cast<std::size_t>(island_of_slot_[body.index])].contacted = true;
+    }
+  };
+  for (const ContactManifold& m : manifolds) {
+    mark(m.body_a);
+    mark(m.body_b);
   }
 }
 
@@ -447,7 +466,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
   }
   // A relax pass that folds the next sub-step's solve pass in solves three right sides, or
   // two where that pass's impulses are not read (Pass::fold_apart).
-  const bool fold = !with_bias && which.fold_next && !island.damped;
+  const bool fold = !with_bias && which.fold_next && !island.damped && !island.contacted;
   const bool fold_apart = fold && which.fold_apart;
   // A solve pass may reuse the factor of the last sub-step's relax pass (Pass says when):
   // the bodies have moved only by the position projection since. (The lead writes the flags

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "slot_vectors.hpp"
@@ -33,6 +34,7 @@
 #include "solver/tree_system.hpp"
 
 namespace softstep {
+struct ContactManifold;
 struct SolverBodies;
 class LaneSolver;
 }  // namespace softstep
@@ -59,6 +61,11 @@ class TreeSolver {
              const LaneSolver& lanes);
   bool empty() const { return islands_.empty(); }
   const TreeCounts& counts() const { return counts_; }
+  // Before a step's stages: which islands the step's contacts touch (a body of theirs in a
+  // manifold). Their relax passes do not fold the next sub-step's solve pass in (the contact
+  // passes change their velocities between); the other islands fold as in a world without
+  // contacts (Island::contacted). The manifolds have been checked (bodies that exist).
+  void mark_contacts(std::span<const ContactManifold> manifolds);
   // Which exact pass this is.
   struct Pass {
     bool with_bias = true;  // the solve pass (with the bias), or the relax pass (without)
@@ -92,9 +99,10 @@ class TreeSolver {
     // integration will add (gravity and applied forces: `gravity`; applied torques: `torque`)
     // and adds that velocity change's constraint response now: the next sub-step's solve pass
     // then has nothing left to do but hand over its impulses. For a sub-step whose velocities
-    // only the integration changes before its solve pass (no contact, no Gauss-Seidel pass over
-    // these joints, no inertia refresh: step.cpp), and adds to them only: an island with a
-    // damped body does not fold, whatever the pass says (Island::damped; damping scales the
+    // only the integration changes before its solve pass (no Gauss-Seidel pass over these
+    // joints, no inertia refresh: step.cpp), and adds to them only: an island that a contact
+    // touches does not fold, whatever the pass says (Island::contacted), nor one with a damped
+    // body (Island::damped; damping scales the
     // velocities this pass leaves, linear and angular by their own factors, body by body, and J
     // of what it takes off is not known until this pass has solved; 20 links with linear or
     // angular damping of 1/s ended 8.1e-5 / 6.6e-5 m from the one solved sub-step by sub-step,
@@ -204,6 +212,11 @@ class TreeSolver {
     // passes do not fold the next sub-step's solve pass in (Pass::fold_next). Per island, so
     // that one damped body elsewhere does not cost every island its fold.
     bool damped = false;
+    // A body of the island is in one of this step's contact manifolds (mark_contacts): its
+    // relax passes do not fold either, as the contact passes change its velocities between a
+    // relax pass and the next sub-step's solve pass. Per island, so that a contact elsewhere
+    // does not cost every island its fold (until 2026-11-29 any contact did).
+    bool contacted = false;
     // Per part, the largest joint gap the relax pass's last check left (its Newton steps).
     double worst[2] = {0.0, 0.0};
     TreeSystem system;
@@ -230,6 +243,7 @@ class TreeSolver {
                     SolverBodies& solver_bodies, LaneSolver& lanes, const simd::SubstepContext& ctx,
                     const Whole& whole, const Crew& crew);
   std::vector<Island> islands_;
+  std::vector<std::int32_t> island_of_slot_;  // per body slot its island's index, or -1
   TreeCounts counts_;
 };
 
