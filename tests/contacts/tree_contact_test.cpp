@@ -135,7 +135,7 @@ TEST(TreeContacts, ChainLyingOnTheGroundRestsWithRigidJointsAndCarriesItsWeight)
 // before the first solve pass reused the last relax factor, 2026-11-29 13:00); with the
 // gravity left out of the folded column (positions then move along velocities the joints do
 // not allow, which only the projection takes back) 7.5e-3 m. Not 0: the two worlds took
-// different paths. (Until 2026-11-29 13:40 any contact kept every island's solve passes, and the
+// different paths. (Until 2026-11-29 13:35 any contact kept every island's solve passes, and the
 // second world had only the ball's.)
 // With damping no relax pass folds (TreeSolver::Pass::fold_next: the damping scales the
 // velocities the relax pass leaves, linear and angular by different factors): the two worlds
@@ -275,7 +275,7 @@ TEST_P(DampedBodyElsewhere, LeavesTheChainItsFold) {
 // Contacts take the fold from the islands they touch only (TreeSolver::Island::contacted): a
 // chain moves bit for bit the same beside a ball resting on the ground as beside a ball falling
 // free, stepped stage by stage both (the ball is not in a tree island). With contacts deciding
-// for the whole world, as before 2026-11-29 13:40, the chain lost its fold to the ball's contact
+// for the whole world, as before 2026-11-29 13:35, the chain lost its fold to the ball's contact
 // and moved 1.3e-6 m apart in a second (the folded test above).
 TEST(TreeContacts, AContactElsewhereLeavesTheChainItsFold) {
   WorldSettings s = settings_without_sleep();
