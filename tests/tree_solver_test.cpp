@@ -361,14 +361,28 @@ TEST(TreeSolve, IslandsSteppedWholeGiveTheStageByStageBits) {
 // it, 20 x 1 kg x g, up on the top link (static equilibrium; the exact solve leaves no spring
 // stretch to add or take any: 1e-3 relative covers the float velocities). Without the exact
 // pass's impulses the reading is 0; with a warm start left in, a multiple of it.
+// 20 links of 1 kg hanging at rest from a static anchor, solved exactly.
+struct ExactHangingChain {
+  World world{settings()};
+  scenes::ChainOptions options = chain_options();
+  scenes::ChainScene scene = scenes::build_chain(world, options);
+  static WorldSettings settings() {
+    WorldSettings s;
+    s.solver = SolverMode::DirectForTrees;
+    return s;
+  }
+  static scenes::ChainOptions chain_options() {
+    scenes::ChainOptions o;
+    o.links = 20;
+    o.layout = scenes::ChainLayout::Hanging;
+    return o;
+  }
+};
+
 TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
-  WorldSettings settings;
-  settings.solver = SolverMode::DirectForTrees;
-  World world(settings);
-  scenes::ChainOptions o;
-  o.links = 20;
-  o.layout = scenes::ChainLayout::Hanging;
-  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  ExactHangingChain chain;
+  World& world = chain.world;
+  const scenes::ChainScene& scene = chain.scene;
   const StepPlan& plan = world.step_plan();
   const auto runs = [&](PlanStage stage) { return plan.runs(stage); };
   EXPECT_TRUE(runs(PlanStage::ClearImpulses));
@@ -396,13 +410,10 @@ TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
 // 0.2 m sideways (set_position), far from the factor the next step starts with: no joint opens
 // wider than that, and the joints close again (under 1e-6 m after 2 s).
 TEST(TreeSolve, EditsBetweenStepsReachTheReusedFirstSolvePass) {
-  WorldSettings settings;
-  settings.solver = SolverMode::DirectForTrees;
-  World world(settings);
-  scenes::ChainOptions o;
-  o.links = 20;
-  o.layout = scenes::ChainLayout::Hanging;
-  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  ExactHangingChain chain;
+  World& world = chain.world;
+  const scenes::ChainScene& scene = chain.scene;
+  const scenes::ChainOptions& o = chain.options;
   for (int i = 0; i < 30; ++i) world.step(kDt);
   const BodyId last = scene.links.front().back();
   world.set_mass_properties(last, 100.0, solid_sphere_inertia(100.0, o.link_radius));

@@ -145,44 +145,48 @@ struct Damping {
   double linear, angular;  // 1/s, every link's
   const char* name;
 };
-class FoldedSolvePass : public ::testing::TestWithParam<Damping> {};
-
-TEST_P(FoldedSolvePass, MovesTheChainAsTheSolvePassItReplaces) {
-  WorldSettings s = settings_without_sleep();
-  s.solver = SolverMode::DirectForTrees;
-  struct Scene {
-    World world;
-    BodyId ground, ball;
-    scenes::ChainScene chain;
-  };
-  const auto make = [&] {
-    Scene scene{World(s), {}, {}, {}};
-    scene.ground = add_ground(scene.world);
+// A chain solved exactly (20 links of 1 kg, 100 kg at the end, released horizontally, every
+// link damped as given) and, 10 m apart from it, a ball resting on the ground (its contact,
+// sphere_on_ground, given or not at each step).
+struct ChainBesideBall {
+  World world;
+  BodyId ground, ball;
+  scenes::ChainScene chain;
+  explicit ChainBesideBall(const Damping& damping) : world(settings()) {
+    ground = add_ground(world);
     BodyDef b;
     b.position = {0.0, kRadius, 10.0};
     b.inertia = solid_sphere_inertia(1.0, kRadius);
-    scene.ball = scene.world.create_body(b);
+    ball = world.create_body(b);
     scenes::ChainOptions o;
     o.links = 20;
     o.link_masses = std::vector<double>(19, 1.0);
     o.link_masses.push_back(100.0);
-    o.linear_damping = GetParam().linear;
-    o.angular_damping = GetParam().angular;
-    scene.chain = scenes::build_chain(scene.world, o);
-    return scene;
-  };
-  Scene folded = make(), solved = make();
+    o.linear_damping = damping.linear;
+    o.angular_damping = damping.angular;
+    chain = scenes::build_chain(world, o);
+  }
+  static WorldSettings settings() {
+    WorldSettings s = settings_without_sleep();
+    s.solver = SolverMode::DirectForTrees;
+    return s;
+  }
+  ContactManifold ball_on_ground() const { return sphere_on_ground(world, ground, ball, kRadius); }
+};
+
+class FoldedSolvePass : public ::testing::TestWithParam<Damping> {};
+
+TEST_P(FoldedSolvePass, MovesTheChainAsTheSolvePassItReplaces) {
+  ChainBesideBall folded(GetParam()), solved(GetParam());
   for (int i = 0; i < 60; ++i) {
-    folded.world.step(
-        kDt, std::vector{sphere_on_ground(folded.world, folded.ground, folded.ball, kRadius)});
+    folded.world.step(kDt, std::vector{folded.ball_on_ground()});
     ContactManifold far;
     far.body_a = solved.ground;
     far.body_b = solved.chain.links.front().back();
     far.friction = 0.0;
     far.point_count = 1;
     far.points[0].separation = 100.0;
-    solved.world.step(
-        kDt, std::vector{sphere_on_ground(solved.world, solved.ground, solved.ball, kRadius), far});
+    solved.world.step(kDt, std::vector{solved.ball_on_ground(), far});
   }
   ASSERT_EQ(folded.world.step_plan().tree_islands, 1u);
   ASSERT_EQ(solved.world.step_plan().tree_islands, 1u);
@@ -278,31 +282,9 @@ TEST_P(DampedBodyElsewhere, LeavesTheChainItsFold) {
 // for the whole world, as before 2026-11-29 13:35, the chain lost its fold to the ball's contact
 // and moved 1.3e-6 m apart in a second (the folded test above).
 TEST(TreeContacts, AContactElsewhereLeavesTheChainItsFold) {
-  WorldSettings s = settings_without_sleep();
-  s.solver = SolverMode::DirectForTrees;
-  struct Scene {
-    World world;
-    BodyId ground, ball;
-    scenes::ChainScene chain;
-  };
-  const auto make = [&] {
-    Scene scene{World(s), {}, {}, {}};
-    scene.ground = add_ground(scene.world);
-    BodyDef b;
-    b.position = {0.0, kRadius, 10.0};
-    b.inertia = solid_sphere_inertia(1.0, kRadius);
-    scene.ball = scene.world.create_body(b);
-    scenes::ChainOptions o;
-    o.links = 20;
-    o.link_masses = std::vector<double>(19, 1.0);
-    o.link_masses.push_back(100.0);
-    scene.chain = scenes::build_chain(scene.world, o);
-    return scene;
-  };
-  Scene resting = make(), falling = make();
+  ChainBesideBall resting({0.0, 0.0, "NoDamping"}), falling({0.0, 0.0, "NoDamping"});
   for (int i = 0; i < 60; ++i) {
-    resting.world.step(
-        kDt, std::vector{sphere_on_ground(resting.world, resting.ground, resting.ball, kRadius)});
+    resting.world.step(kDt, std::vector{resting.ball_on_ground()});
     falling.world.step(kDt);
   }
   ASSERT_EQ(resting.world.step_plan().tree_islands, 1u);
