@@ -12,8 +12,9 @@
 // still drift where links spin fast: the 1,000-link whip's tip turns ~1 rad per sub-step as it
 // cracks (254 rad/s, 261 m/s), and the first-order rotation update opened a joint 0.19 m; with
 // the whole of C bounded, 2.1 cm. Where nothing but the velocity integration changes the
-// velocities between a relax pass and the next sub-step's solve pass (an exact-only world
-// without contacts), the relax pass also solves what that solve pass would (Pass::fold_next),
+// velocities between a relax pass and the next sub-step's solve pass (an island of an
+// exact-only world that no contact touches and no damping slows), the relax pass also solves
+// what that solve pass would (Pass::fold_next),
 // and the solve pass runs only at a step's first sub-step, where it solves with the last step's
 // last relax factor (Pass::reuse_relax_factor): a step factors each island once per sub-step.
 //
@@ -102,13 +103,12 @@ class TreeSolver {
     // only the integration changes before its solve pass (no Gauss-Seidel pass over these
     // joints, no inertia refresh: step.cpp), and adds to them only: an island that a contact
     // touches does not fold, whatever the pass says (Island::contacted), nor one with a damped
-    // body (Island::damped; damping scales the
-    // velocities this pass leaves, linear and angular by their own factors, body by body, and J
-    // of what it takes off is not known until this pass has solved; 20 links with linear or
-    // angular damping of 1/s ended 8.1e-5 / 6.6e-5 m from the one solved sub-step by sub-step,
-    // 30-50x what the fold leaves without damping; the damping stage scales an undamped body's
-    // velocities by exactly 1). The velocities it leaves are not those of a sub-step's end, so
-    // never for a step's last sub-step.
+    // body (Island::damped; damping scales the velocities this pass leaves, linear and angular
+    // by their own factors, body by body, and J of what it takes off is not known until this
+    // pass has solved; 20 links with linear or angular damping of 1/s ended 8.1e-5 / 6.6e-5 m
+    // from the one solved sub-step by sub-step, 30-50x what the fold leaves without damping;
+    // the damping stage scales an undamped body's velocities by exactly 1). The velocities it
+    // leaves are not those of a sub-step's end, so never for a step's last sub-step.
     bool fold_next = false;
     bool gravity = false, torque = false;
     // With fold_next: whether the folded solve pass's impulses are read, which a sub-step's
