@@ -408,7 +408,8 @@ TEST(TreeSolve, ExactOnlyWorldsSkipTheIterativePassesAndReadTheExactImpulses) {
 // the masses only where a pass factors, which in a world whose relax passes fold the solve
 // passes none does after the first step, it kept carrying 20 kg). Then its middle link moved
 // 0.2 m sideways (set_position), far from the factor the next step starts with: no joint opens
-// wider than that, and the joints close again (under 1e-6 m after 2 s).
+// wider than that, and the joints close again (under 1e-6 m after 2 s); the same for a link
+// turned half a turn (set_orientation).
 TEST(TreeSolve, EditsBetweenStepsReachTheReusedFirstSolvePass) {
   ExactHangingChain chain;
   World& world = chain.world;
@@ -429,6 +430,21 @@ TEST(TreeSolve, EditsBetweenStepsReachTheReusedFirstSolvePass) {
     world.step(kDt);
     worst = scenes::joint_errors(world, scene.joints).max;
     ASSERT_LE(worst, 0.2 + 1e-6) << "step " << i;
+  }
+  EXPECT_LT(worst, 1e-6);
+
+  // And a link turned half a turn about the chain's side (set_orientation): its anchors swap
+  // ends, its two joints open by a link's length (0.25 m), no wider at any step, and close again
+  // (1.3e-8 m after 2 s).
+  const BodyId turned = scene.links.front()[5];
+  world.set_orientation(turned,
+                        Quaternion(Eigen::AngleAxisd(std::numbers::pi, Eigen::Vector3d::UnitZ())) *
+                            world.body(turned).orientation);
+  const double opened = scenes::joint_errors(world, scene.joints).max;
+  for (int i = 0; i < 120; ++i) {
+    world.step(kDt);
+    worst = scenes::joint_errors(world, scene.joints).max;
+    ASSERT_LE(worst, opened + 1e-6) << "step " << i;
   }
   EXPECT_LT(worst, 1e-6);
 }
