@@ -14,9 +14,9 @@
 // the whole of C bounded, 2.1 cm. Where nothing but the velocity integration changes the
 // velocities between a relax pass and the next sub-step's solve pass (an island of an
 // exact-only world that no contact touches and no damping slows), the relax pass also solves
-// what that solve pass would (Pass::fold_next),
-// and the solve pass runs only at a step's first sub-step, where it solves with the last step's
-// last relax factor (Pass::reuse_relax_factor): a step factors each island once per sub-step.
+// what that solve pass would (Pass::fold_next), and the solve pass runs only at a step's first
+// sub-step, where it solves with the last step's last relax factor (Pass::reuse_relax_factor):
+// a step factors each island once per sub-step.
 //
 // Handles rigid ball joints and rigid distance joints. An island (movable bodies linked by
 // joints) with any other joint (soft, free, limited, revolute, prismatic, weld, ...), with
