@@ -92,18 +92,17 @@ PoseNow pose_now(const simd::DeltaRecord& d) {
 
 // C of a joint whose anchors are `separation` apart (a distance joint's in row 0; padding 0;
 // a distance joint without an axis has no row, so 0).
-Eigen::Vector3d violation(const JointSlot& j, const Eigen::Vector3d& separation) {
-  if (j.type == JointType::Ball) return separation;
+Eigen::Vector3d violation(const RowShape& shape, const Eigen::Vector3d& separation) {
+  if (shape.ball) return separation;
   const double length = separation.norm();
-  const double rest = std::get<DistanceJointDef>(j.def).rest_length;
-  return {length > 1e-9 ? length - rest : 0.0, 0.0, 0.0};
+  return {length > 1e-9 ? length - shape.rest_length : 0.0, 0.0, 0.0};
 }
 
 // How far the joint is from holding, m: |C|, and for a distance joint without an axis its
 // rest length (it has no row to say so).
-double violation_size(const JointSlot& j, const Eigen::Vector3d& separation) {
-  if (j.type == JointType::Ball) return separation.norm();
-  return std::abs(separation.norm() - std::get<DistanceJointDef>(j.def).rest_length);
+double violation_size(const RowShape& shape, const Eigen::Vector3d& separation) {
+  if (shape.ball) return separation.norm();
+  return std::abs(separation.norm() - shape.rest_length);
 }
 
 // Moves the deltas of the bodies `part` lists (island-local indices into the island's body
@@ -131,9 +130,9 @@ void move_positions(const std::vector<std::uint32_t>& part, const std::vector<st
 }
 
 // Joint j's rows at anchors r_a, r_b that are `separation` apart.
-void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
+void fill_jacobians(const RowShape& shape, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
                     const Eigen::Vector3d& separation, TreeJoint& t) {
-  if (j.type == JointType::Ball) {
+  if (shape.ball) {
     fill_ball_rows(-1.0, r_a, t.jacobian[0]);
     fill_ball_rows(1.0, r_b, t.jacobian[1]);
     return;
@@ -160,20 +159,20 @@ void fill_jacobians(const JointSlot& j, const Eigen::Vector3d& r_a, const Eigen:
 // two-double load waited for the two single stores it spans, which a store cannot forward (14 %
 // of solve_island's samples on the whip, Zen 4).
 template <int N>
-[[gnu::always_inline]] inline void fill_jacobians_times(const JointSlot& j,
+[[gnu::always_inline]] inline void fill_jacobians_times(const RowShape& shape,
                                                         const Eigen::Vector3d& r_a,
                                                         const Eigen::Vector3d& r_b,
                                                         const Eigen::Vector3d& separation,
                                                         const Vec6 (&va)[N], const Vec6 (&vb)[N],
                                                         TreeJoint& t, FourDoubles (&jv)[N]) {
-  if (j.type == JointType::Ball) {
+  if (shape.ball) {
     const BallColumns rows_a = ball_columns(-1.0, r_a), rows_b = ball_columns(1.0, r_b);
     store_columns(rows_a, t.jacobian[0]);
     store_columns(rows_b, t.jacobian[1]);
     for (int i = 0; i < N; ++i) jv[i] = columns_times(rows_a, va[i]) + columns_times(rows_b, vb[i]);
     return;
   }
-  fill_jacobians(j, r_a, r_b, separation, t);
+  fill_jacobians(shape, r_a, r_b, separation, t);
   for (int i = 0; i < N; ++i) {
     jv[i] = times_vector(t.jacobian[0], va[i]) + times_vector(t.jacobian[1], vb[i]);
   }
@@ -182,14 +181,14 @@ template <int N>
 // J v of joint j's rows at anchors r_a, r_b (`separation` apart), the rows not stored: a solve
 // pass that reuses a factor keeps that factor's Jacobians in the rows (Pass::reuse_relax_factor).
 // A ball joint's as fill_jacobians_times forms them (the same bits).
-FourDoubles jacobians_times(const JointSlot& j, const Eigen::Vector3d& r_a,
+FourDoubles jacobians_times(const RowShape& shape, const Eigen::Vector3d& r_a,
                             const Eigen::Vector3d& r_b, const Eigen::Vector3d& separation,
                             const Vec6& va, const Vec6& vb) {
-  if (j.type == JointType::Ball) {
+  if (shape.ball) {
     return columns_times(ball_columns(-1.0, r_a), va) + columns_times(ball_columns(1.0, r_b), vb);
   }
   TreeJoint rows;
-  fill_jacobians(j, r_a, r_b, separation, rows);
+  fill_jacobians(shape, r_a, r_b, separation, rows);
   return times_vector(rows.jacobian[0], va) + times_vector(rows.jacobian[1], vb);
 }
 
@@ -285,6 +284,9 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     t.rows = slot.type == JointType::Ball ? 3 : 1;
     t.ball = slot.type == JointType::Ball;  // its rows come from ball_columns
     island.rows.push_back(t);
+    island.shape.push_back(
+        {.ball = t.ball,
+         .rest_length = t.ball ? 0.0 : std::get<DistanceJointDef>(slot.def).rest_length});
   }
   for (std::size_t i = 0; i < roots.size(); ++i) {
     Island& island = candidates[i];
@@ -517,13 +519,14 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
           m.inv_inertia[1], m.inv_inertia[5], m.inv_inertia[4], m.inv_inertia[5], m.inv_inertia[2];
     }
     for (const std::uint32_t k : part.joints) {
-      const JointSlot& j = joints[island.joints[k]];
       const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
+      const RowShape& j = island.shape[k];
       if (which.step_start) {
-        const BodySlot& a = bodies[j.body_a];
-        const BodySlot& b = bodies[j.body_b];
-        island.anchor_a[k] = a.orientation * j.local_anchor_a;
-        island.anchor_b[k] = b.orientation * j.local_anchor_b;
+        const JointSlot& slot = joints[island.joints[k]];
+        const BodySlot& a = bodies[slot.body_a];
+        const BodySlot& b = bodies[slot.body_b];
+        island.anchor_a[k] = a.orientation * slot.local_anchor_a;
+        island.anchor_b[k] = b.orientation * slot.local_anchor_b;
         island.offset[k] = b.position - a.position;
         island.held_back[k] =
             violation_size(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
@@ -670,7 +673,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       for (const std::uint32_t k : part.joints) {
         island.anchors[k] = anchors_now(k);
         const Eigen::Vector3d left =
-            violation(joints[island.joints[k]], island.anchors[k].separation) - island.kept[k];
+            violation(island.shape[k], island.anchors[k].separation) - island.kept[k];
         island.rows[k].residual = left;
         worst = std::max(worst, left.cwiseAbs().maxCoeff());
       }
@@ -681,7 +684,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     each_part([&](Part& part, int p) {
       for (const std::uint32_t k : part.joints) {
         const Anchors& now = island.anchors[k];
-        fill_jacobians(joints[island.joints[k]], now.r_a, now.r_b, now.separation, island.rows[k]);
+        fill_jacobians(island.shape[k], now.r_a, now.r_b, now.separation, island.rows[k]);
       }
       island.system.factor_solve_up<1>(p, island.inverse_mass, island.rows, {});
     });
