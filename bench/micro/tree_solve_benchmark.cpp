@@ -45,6 +45,7 @@ struct Chain {
       t.ball = true;
       t.jacobian[0] = ball_rows(-1.0, r_a);
       t.jacobian[1] = ball_rows(1.0, r_b);
+      set_ball_arms(t);
       t.residual = {jitter(random), jitter(random), jitter(random)};
       second[static_cast<std::size_t>(j)] = {jitter(random), jitter(random), jitter(random)};
       InverseMass& w = inverse_mass[static_cast<std::size_t>(j)];

@@ -63,6 +63,7 @@ ExactSolution solve_tree(const SoftSystem& s, TreeSweep sweep) {
     // (TreeJoint::ball), checked here entry by entry.
     t.ball = count == 3 && seen.size() == 2 && ball_rows(t.jacobian[0], -1.0) &&
              ball_rows(t.jacobian[1], 1.0);
+    if (t.ball) solver::set_ball_arms(t);
     for (int i = 0; i < count; ++i) {
       t.residual[i] = residual[row + i];
       for (int k = 0; k < count; ++k) t.gamma(i, k) = s.softness.coeff(row + i, row + k);

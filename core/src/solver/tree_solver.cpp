@@ -61,6 +61,28 @@ struct BallColumns {
   for (int k = 0; k < 6; ++k) store3(jac.data() + 3 * k, b.column[k]);
 }
 
+// The columns again from a side's arm a = -sign r (TreeJoint::arm): the same values, negation
+// being exact.
+[[gnu::always_inline]] inline BallColumns arm_columns(double sign, const double (&a)[4]) {
+  BallColumns b;
+  b.column[0] = FourDoubles{sign, 0.0, 0.0, 0.0};
+  b.column[1] = FourDoubles{0.0, sign, 0.0, 0.0};
+  b.column[2] = FourDoubles{0.0, 0.0, sign, 0.0};
+  b.column[3] = FourDoubles{0.0, a[2], -a[1], 0.0};
+  b.column[4] = FourDoubles{-a[2], 0.0, a[0], 0.0};
+  b.column[5] = FourDoubles{a[1], -a[0], 0.0, 0.0};
+  return b;
+}
+
+// A ball joint's arms (a = -sign r per side) from the anchors' arms r_a, r_b.
+[[gnu::always_inline]] inline void store_arms(const Eigen::Vector3d& r_a,
+                                              const Eigen::Vector3d& r_b, TreeJoint& t) {
+  for (int k = 0; k < 3; ++k) {
+    t.arm[0][k] = -(-1.0 * r_a[k]);
+    t.arm[1][k] = -(1.0 * r_b[k]);
+  }
+}
+
 // J v from the columns in registers, in times_vector's order (the same bits as from the
 // stored block).
 [[gnu::always_inline]] inline FourDoubles columns_times(const BallColumns& b, const Vec6& v) {
@@ -135,6 +157,7 @@ void fill_jacobians(const RowShape& shape, const Eigen::Vector3d& r_a, const Eig
   if (shape.ball) {
     fill_ball_rows(-1.0, r_a, t.jacobian[0]);
     fill_ball_rows(1.0, r_b, t.jacobian[1]);
+    store_arms(r_a, r_b, t);
     return;
   }
   const double length = separation.norm();
@@ -159,16 +182,17 @@ void fill_jacobians(const RowShape& shape, const Eigen::Vector3d& r_a, const Eig
 // two-double load waited for the two single stores it spans, which a store cannot forward (14 %
 // of solve_island's samples on the whip, Zen 4).
 template <int N>
-[[gnu::always_inline]] inline void fill_jacobians_times(const RowShape& shape,
-                                                        const Eigen::Vector3d& r_a,
-                                                        const Eigen::Vector3d& r_b,
-                                                        const Eigen::Vector3d& separation,
-                                                        const Vec6 (&va)[N], const Vec6 (&vb)[N],
-                                                        TreeJoint& t, FourDoubles (&jv)[N]) {
+[[gnu::always_inline]] inline void fill_jacobians_times(
+    const RowShape& shape, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
+    const Eigen::Vector3d& separation, const Vec6 (&va)[N], const Vec6 (&vb)[N], TreeJoint& t,
+    FourDoubles (&jv)[N], bool blocks) {
   if (shape.ball) {
     const BallColumns rows_a = ball_columns(-1.0, r_a), rows_b = ball_columns(1.0, r_b);
-    store_columns(rows_a, t.jacobian[0]);
-    store_columns(rows_b, t.jacobian[1]);
+    store_arms(r_a, r_b, t);
+    if (blocks) {
+      store_columns(rows_a, t.jacobian[0]);
+      store_columns(rows_b, t.jacobian[1]);
+    }
     for (int i = 0; i < N; ++i) jv[i] = columns_times(rows_a, va[i]) + columns_times(rows_b, vb[i]);
     return;
   }
@@ -540,17 +564,24 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
       const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
       TreeJoint& t = island.rows[k];
+      const bool blocks = island.system.reads_blocks(k);
       Eigen::Vector3d c = violation(j, separation);
       FourDoubles jv;
       if (reuse_factor) {
         // A reused factor keeps its Jacobians (the relax pass's) for its solve; C is today's,
         // and at a step's start J v too (Pass::reuse_relax_factor says why).
-        jv = which.step_start ? jacobians_times(j, r_a, r_b, separation, va, vb)
-                              : times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
+        if (which.step_start) {
+          jv = jacobians_times(j, r_a, r_b, separation, va, vb);
+        } else if (j.ball) {  // its blocks may not be written (TreeSystem::reads_blocks)
+          jv = columns_times(arm_columns(-1.0, t.arm[0]), va) +
+               columns_times(arm_columns(1.0, t.arm[1]), vb);
+        } else {
+          jv = times_vector(t.jacobian[0], va) + times_vector(t.jacobian[1], vb);
+        }
       } else if (fold) {
         const Vec6 a[2] = {va, next_change(t.body[0], ia)}, b[2] = {vb, next_change(t.body[1], ib)};
         FourDoubles products[2];
-        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products);
+        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products, blocks);
         if (fold_apart) {
           jv = products[0];
           store3(island.next_change[k].data(), products[1]);
@@ -560,7 +591,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       } else {
         const Vec6 a[1] = {va}, b[1] = {vb};
         FourDoubles products[1];
-        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products);
+        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products, blocks);
         jv = products[0];
       }
       if (!with_bias) {

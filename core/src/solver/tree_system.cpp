@@ -136,6 +136,16 @@ Layout lay_out(const Graph& g, std::uint32_t root, bool split) {
 
 }  // namespace
 
+void set_ball_arms(TreeJoint& joint) {
+  for (int side = 0; side < 2; ++side) {
+    const double* j = joint.jacobian[side].data();  // col-major: (i, c) at i + 3 c
+    joint.arm[side][0] = j[2 + 3 * 4];
+    joint.arm[side][1] = j[0 + 3 * 5];
+    joint.arm[side][2] = j[1 + 3 * 3];
+    joint.arm[side][3] = 0.0;
+  }
+}
+
 bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joints) {
   order_.clear();
   if (bodies == 0) return false;
@@ -239,6 +249,19 @@ bool TreeSystem::build(std::uint32_t bodies, const std::vector<TreeJoint>& joint
         body_child_[body] == kNoChild ? static_cast<std::int32_t>(n.index) : kManyChildren;
     body_child_side_[body] = n.side;
   }
+  // A body that is not a chain link between ball joints reads its joints' blocks.
+  std::vector<bool> reads_its_blocks(bodies, false);
+  for (const TreeNode& n : order_) {
+    if (!n.joint) reads_its_blocks[n.index] = !is_link(n) || !ball_link(n, joints);
+  }
+  reads_blocks_.assign(joints.size(), 0);
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    bool reads = !joints[j].ball;
+    for (const std::int32_t b : joints[j].body) {
+      reads = reads || (b >= 0 && reads_its_blocks[static_cast<std::size_t>(b)]);
+    }
+    reads_blocks_[j] = reads ? 1 : 0;
+  }
   return true;
 }
 
@@ -327,9 +350,8 @@ struct BallSide {
   Row3 a{};
 };
 
-[[gnu::always_inline]] inline BallSide ball_side(const Jac& jac) {
-  const double* j = jac.data();  // col-major: (i, c) at i + 3 c
-  return {j[0], Row3{j[2 + 3 * 4], j[0 + 3 * 5], j[1 + 3 * 3], 0.0}};
+[[gnu::always_inline]] inline BallSide ball_side(const TreeJoint& joint, int side) {
+  return {side == 0 ? -1.0 : 1.0, load4(joint.arm[side])};
 }
 
 // The columns of I_w [a]x, I_w (a x e_k): two of I_w's columns each (I_w symmetric: its rows).
@@ -413,18 +435,14 @@ struct GeneralLinkProducts {
 struct BallLinkProducts {
   double w;
   const Row3 (&inertia_w)[3];
-  const Jac* parent;
-  const Jac* child;
-  BallSide p{}, c{};
+  BallSide p, c;  // the parent joint's side and the child joint's (those the link has)
   Row3 c_p[3] = {}, c_c[3] = {};
 
   [[gnu::always_inline]] void parent_products(Row3 (&k_pp)[3]) {
-    p = ball_side(*parent);
     inertia_times_skew(inertia_w, p.a, c_p);
     ball_products(p, w, c_p, k_pp);
   }
   [[gnu::always_inline]] void child_products(Row3 (&k_cc)[3]) {
-    c = ball_side(*child);
     inertia_times_skew(inertia_w, c.a, c_c);
     ball_products(c, w, c_c, k_cc);
   }
@@ -614,19 +632,21 @@ void TreeSystem::eliminate_link(std::size_t k, const InverseMass* inverse_mass,
   // I_w is symmetric: its rows are its columns.
   const double* angular = mass.angular.data();
   const Row3 inertia_w[3] = {load3(angular), load3(angular + 3), load3(angular + 6)};
-  const Jac* parent_jac = nullptr;
-  if (node.parent >= 0) {
-    parent_jac = &joints[order_[static_cast<std::size_t>(node.parent)].index].jacobian[node.side];
-  }
+  const TreeJoint* parent_joint =
+      node.parent >= 0 ? &joints[order_[static_cast<std::size_t>(node.parent)].index] : nullptr;
   const std::int32_t child = body_child_[node.index];
-  const Jac* child_jac =
-      child == kNoChild
-          ? nullptr
-          : &joints[static_cast<std::size_t>(child)].jacobian[body_child_side_[node.index]];
+  const TreeJoint* child_joint =
+      child == kNoChild ? nullptr : &joints[static_cast<std::size_t>(child)];
+  const int child_side = body_child_side_[node.index];
   if (ball_link(node, joints)) {
-    BallLinkProducts products{mass.linear, inertia_w, parent_jac, child_jac};
+    BallLinkProducts products{
+        mass.linear, inertia_w,
+        parent_joint != nullptr ? ball_side(*parent_joint, node.side) : BallSide{},
+        child_joint != nullptr ? ball_side(*child_joint, child_side) : BallSide{}};
     eliminate_link_with<Columns>(node, products);
   } else {
+    const Jac* parent_jac = parent_joint != nullptr ? &parent_joint->jacobian[node.side] : nullptr;
+    const Jac* child_jac = child_joint != nullptr ? &child_joint->jacobian[child_side] : nullptr;
     GeneralLinkProducts products{mass.linear, inertia_w, parent_jac, child_jac};
     eliminate_link_with<Columns>(node, products);
   }
@@ -739,19 +759,18 @@ void TreeSystem::backward(Span span, const std::vector<TreeJoint>& joints,
       Row3 parent_rows[6] = {}, child_rows[6] = {}, y_columns[3] = {};
       BallSide parent_ball, child_ball;
       if (!root) {
-        const Jac& jac = joints[parent].jacobian[node.side];
         if (ball) {
-          parent_ball = ball_side(jac);
+          parent_ball = ball_side(joints[parent], node.side);
         } else {
-          jacobian_rows(jac, parent_rows);
+          jacobian_rows(joints[parent].jacobian[node.side], parent_rows);
         }
       }
       if (has_child) {
-        const Jac& jac = joints[c].jacobian[body_child_side_[node.index]];
+        const int side = body_child_side_[node.index];
         if (ball) {
-          child_ball = ball_side(jac);
+          child_ball = ball_side(joints[c], side);
         } else {
-          jacobian_rows(jac, child_rows);
+          jacobian_rows(joints[c].jacobian[side], child_rows);
         }
       }
       if (has_child && !root) {

@@ -51,14 +51,21 @@ struct TreeJoint {
   std::int32_t body[2] = {-1, -1};
   int rows = 3;  // 1..3; rows beyond are padding
   // A ball joint's rows, s [I, -[r]x] on each side (s = -1 on side 0, +1 on side 1, r the
-  // anchor's arm from the body's centre): the elimination of a chain link between two such
-  // joints reads s and r back from the blocks and forms its products from them
-  // (tree_system.cpp, BallLinkProducts).
+  // anchor's arm from the body's centre): the elimination and the solve of a chain link
+  // between two such joints read s and a = -s r (`arm`, padded to four doubles: one load) and
+  // form their products from them (tree_system.cpp, BallLinkProducts). A ball joint's `arm`
+  // must be set with its blocks (set_ball_arms from the blocks).
   bool ball = false;
-  Jac jacobian[2] = {Jac::Zero(), Jac::Zero()};  // per side
+  double arm[2][4] = {};
+  // Per side. A ball joint's are read only where TreeSystem::reads_blocks says: elsewhere the
+  // caller may leave them as they were.
+  Jac jacobian[2] = {Jac::Zero(), Jac::Zero()};
   Eigen::Matrix3d gamma = Eigen::Matrix3d::Zero();     // symmetric (a chain link relies on it)
   Eigen::Vector3d residual = Eigen::Vector3d::Zero();  // r = J v + bias + Gamma P
 };
+
+// A ball joint's `arm` from its blocks (a = -s r, the blocks' angular entries).
+void set_ball_arms(TreeJoint& joint);
 
 // The elimination order of an island, built once per topology: every node after its
 // children. A node is a body or a joint; `side` says which end of the joint the edge to the
@@ -91,6 +98,12 @@ class TreeSystem {
   // children the part they top. The caller's per-body and per-joint work follows it.
   int body_part(std::uint32_t body) const { return body_part_[body]; }
   int joint_part(std::uint32_t joint) const { return joint_part_[joint]; }
+  // Whether a factor or solve reads joint j's 3x6 blocks (TreeJoint::jacobian): always for a
+  // joint that is not a ball joint; for a ball joint, where one of its bodies is not a chain
+  // link between ball joints (a body of many children, a link beside another kind of joint).
+  // The exact passes write a ball joint's blocks only there: the whip's 1,000 links read
+  // only their arms, and the rows pass wrote 288 bytes a joint that nobody read.
+  bool reads_blocks(std::uint32_t joint) const { return reads_blocks_[joint] != 0; }
 
   // Factors H for these inverse masses (W = M^-1 per body: the solver keeps inverse masses,
   // and a chain link is eliminated with W, tree_system.cpp) and Jacobians and Gammas, leaves
@@ -203,7 +216,7 @@ class TreeSystem {
   // [part 0's nodes][part 1's][the root's children of part 0][of part 1][the root]
   std::vector<TreeNode> order_;
   Span segment_[2], tops_[2];
-  std::vector<std::uint8_t> body_part_, joint_part_;
+  std::vector<std::uint8_t> body_part_, joint_part_, reads_blocks_;
   // Scratch, sized once in build: per body of many children the reduced block, then its
   // inverse, and the transfer towards its parent joint (sized for every body; a chain link
   // uses inverse_mass_, link_e_inverse_ and link_y_ below instead); per joint the reduced block
