@@ -82,6 +82,19 @@ using FourDoubles = double __attribute__((vector_size(32)));
   __builtin_memcpy(p, &v, sizeof(v));
 }
 
+// v's elements turned: (y, z, x) and (z, x, y) (the fourth stays).
+[[gnu::always_inline]] inline FourDoubles yzx(const FourDoubles& v) {
+  return __builtin_shufflevector(v, v, 1, 2, 0, 3);
+}
+[[gnu::always_inline]] inline FourDoubles zxy(const FourDoubles& v) {
+  return __builtin_shufflevector(v, v, 2, 0, 1, 3);
+}
+
+// a x b, each element's product of b's turned elements rounded first (fused, multiply_add).
+[[gnu::always_inline]] inline FourDoubles cross(const FourDoubles& a, const FourDoubles& b) {
+  return multiply_add(yzx(a), zxy(b), -(zxy(a) * yzx(b)));
+}
+
 // Three vectors' x, y and z, one vector per lane.
 struct FourVectors {
   FourDoubles x, y, z;

@@ -308,14 +308,6 @@ using Row3 = FourDoubles;
   return multiply_add(a[2], rows[2], multiply_add(a[1], rows[1], multiply_add(a[0], rows[0], sum)));
 }
 
-// v's elements turned: (y, z, x) and (z, x, y).
-[[gnu::always_inline]] inline Row3 yzx(const Row3& v) {
-  return __builtin_shufflevector(v, v, 1, 2, 0, 3);
-}
-[[gnu::always_inline]] inline Row3 zxy(const Row3& v) {
-  return __builtin_shufflevector(v, v, 2, 0, 1, 3);
-}
-
 // The transpose of a 3x3 block's rows (their last elements 0): its columns, in registers.
 [[gnu::always_inline]] inline void transpose(const Row3 (&rows)[3], Row3 (&columns)[3]) {
   const Row3 even = __builtin_shufflevector(rows[0], rows[1], 0, 4, 2, 6);  // a0 b0 a2 b2
@@ -323,11 +315,6 @@ using Row3 = FourDoubles;
   columns[0] = __builtin_shufflevector(even, rows[2], 0, 1, 4, 7);
   columns[1] = __builtin_shufflevector(odd, rows[2], 0, 1, 5, 7);
   columns[2] = __builtin_shufflevector(even, rows[2], 2, 3, 6, 7);
-}
-
-// a x b, each element's product of b's turned elements rounded first (fused, multiply_add).
-[[gnu::always_inline]] inline Row3 cross(const Row3& a, const Row3& b) {
-  return multiply_add(yzx(a), zxy(b), -(zxy(a) * yzx(b)));
 }
 
 // A 3x3 inverse by cofactors, by columns: column k of the adjugate is the cross product of the
