@@ -480,6 +480,13 @@ void TreeSystem::init_blocks(Span span, const std::vector<InverseMass>& inverse_
       continue;
     }
     const TreeJoint& joint = joints[node.index];
+    if (joint.rows == 3) {
+      // -Gamma by rows (Gamma symmetric: its columns), a vector each
+      for (int r = 0; r < 3; ++r) {
+        store4(joint_block_[node.index].v[r], -load3(joint.gamma.data() + 3 * r));
+      }
+      continue;
+    }
     Eigen::Matrix3d d = -joint.gamma;
     for (int r = joint.rows; r < 3; ++r) {
       d.row(r).setZero();
