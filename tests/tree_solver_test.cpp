@@ -491,34 +491,22 @@ TEST(TreeSolve, ADistanceJointsNewRestLengthReachesTheExactPasses) {
   WorldSettings settings;
   settings.solver = SolverMode::DirectForTrees;
   World world(settings);
-  BodyDef ground;
-  ground.type = BodyType::Static;
-  BodyId previous = world.create_body(ground);
-  std::vector<JointId> joints;
-  std::vector<BodyId> links;
-  for (int k = 0; k < 8; ++k) {
-    BodyDef link;
-    link.position = {0.0, -0.5 * (k + 1), 0.0};
-    link.inertia = solid_sphere_inertia(link.mass, 0.1);
-    const BodyId body = world.create_body(link);
-    DistanceJointDef j;
-    j.body_a = previous;
-    j.body_b = body;
-    j.rest_length = 0.5;
-    joints.push_back(world.create_distance_joint(j));
-    links.push_back(body);
-    previous = body;
-  }
+  scenes::ChainOptions o;
+  o.links = 8;
+  o.joint = scenes::ChainJoint::Distance;
+  o.layout = scenes::ChainLayout::Hanging;
+  const scenes::ChainScene scene = scenes::build_chain(world, o);
+  const std::vector<BodyId>& links = scene.links.front();
   ASSERT_EQ(world.step_plan().tree_islands, 1u);
   for (int i = 0; i < 30; ++i) world.step(kDt);
   const double bottom = world.body(links.back()).position.y();
-  auto def = world.joint_def<DistanceJointDef>(joints[3]);
-  def.rest_length = 0.6;
-  world.set_joint(joints[3], def);
+  auto def = world.joint_def<DistanceJointDef>(scene.joints[3]);
+  const double longer = def.rest_length + 0.1;
+  def.rest_length = longer;
+  world.set_joint(scene.joints[3], def);
   for (int i = 0; i < 120; ++i) world.step(kDt);
-  for (const JointId joint : joints) EXPECT_LT(world.joint_reading(joint).error, 1e-6);
-  const double length = (world.body(links[3]).position - world.body(links[2]).position).norm();
-  EXPECT_NEAR(length, 0.6, 1e-6);
+  for (const JointId joint : scene.joints) EXPECT_LT(world.joint_reading(joint).error, 1e-6);
+  EXPECT_NEAR((world.body(links[3]).position - world.body(links[2]).position).norm(), longer, 1e-6);
   EXPECT_NEAR(world.body(links.back()).position.y(), bottom - 0.1, 1e-5);
 }
 
