@@ -61,12 +61,13 @@ struct BallColumns {
   for (int k = 0; k < 6; ++k) store3(jac.data() + 3 * k, b.column[k]);
 }
 
-// A ball joint's arms (a = -sign r per side) from the anchors' arms r_a, r_b.
+// A ball joint's arms a = -s r (TreeJoint::arm) from the anchors' arms: r_a on side a (s = -1),
+// -r_b on side b.
 [[gnu::always_inline]] inline void store_arms(const Eigen::Vector3d& r_a,
                                               const Eigen::Vector3d& r_b, TreeJoint& t) {
   for (int k = 0; k < 3; ++k) {
-    t.arm[0][k] = -(-1.0 * r_a[k]);
-    t.arm[1][k] = -(1.0 * r_b[k]);
+    t.arm[0][k] = r_a[k];
+    t.arm[1][k] = -r_b[k];
   }
 }
 
@@ -173,9 +174,9 @@ void fill_jacobians(const RowShape& shape, const Eigen::Vector3d& r_a, const Eig
 
 // fill_jacobians, and J v for N pairs of the bodies' velocities (va[i], vb[i]); a ball joint's
 // blocks only where `blocks` (TreeSystem::reads_blocks), its arms always. A ball joint's J v
-// comes from its arms in registers (ball_times): read back from the block just stored, each
-// column's two-double load waited for the two single stores it spans, which a store cannot
-// forward (14 % of solve_island's samples on the whip, Zen 4).
+// comes from its arms in registers (ball_times), never from a block just stored: read back,
+// each column's two-double load waited for the two single stores it spans, which a store
+// cannot forward (14 % of solve_island's samples on the whip, Zen 4).
 template <int N>
 [[gnu::always_inline]] inline void fill_jacobians_times(
     const RowShape& shape, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
@@ -300,9 +301,11 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     t.rows = slot.type == JointType::Ball ? 3 : 1;
     t.ball = slot.type == JointType::Ball;  // its rows come from ball_columns
     island.rows.push_back(t);
-    island.shape.push_back(
-        {.ball = t.ball,
-         .rest_length = t.ball ? 0.0 : std::get<DistanceJointDef>(slot.def).rest_length});
+    // Every awake joint has a row here, also of kinds whose island then stays iterative.
+    island.shape.push_back({.ball = t.ball,
+                            .rest_length = slot.type == JointType::Distance
+                                               ? std::get<DistanceJointDef>(slot.def).rest_length
+                                               : 0.0});
   }
   for (std::size_t i = 0; i < roots.size(); ++i) {
     Island& island = candidates[i];
