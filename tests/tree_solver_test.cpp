@@ -415,8 +415,8 @@ struct ExactHangingChain {
 
 // An island with a joint the exact pass does not model (here a hinge in a chain of ball
 // joints, and a soft ball joint in another) stays iterative beside an exact one, and the
-// world steps: building the islands reads each joint as its kind (from 7f7bebd to fe2dc01 a hinge's
-// definition was read as a distance joint's, which threw; the world fuzzer found it).
+// world steps: building the islands reads each joint as its kind (from 7f7bebd to fe2dc01 a
+// hinge's definition was read as a distance joint's, which threw; the world fuzzer found it).
 TEST(TreeSolve, IslandsWithOtherJointsStayIterative) {
   World world(ExactHangingChain::settings());
   scenes::ChainOptions o;
