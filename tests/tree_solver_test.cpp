@@ -515,10 +515,10 @@ TEST(TreeSolve, EditsBetweenStepsReachTheReusedFirstSolvePass) {
   EXPECT_LT(worst, 1e-6);
 }
 
-// The exact passes keep a distance joint's rest length with its island (RowShape), built again
-// after a set_joint: one that lengthens a joint of a hanging chain of rigid distance joints
-// reaches them. The joint settles at its new length and the chain below is lowered by the
-// difference (with the old length kept, its error stays at 0.1 m).
+// The exact passes keep a distance joint's rest length with its island (Island::rest_length),
+// built again after a set_joint: one that lengthens a joint of a hanging chain of rigid
+// distance joints reaches them. The joint settles at its new length and the chain below is lowered
+// by the difference (with the old length kept, its error stays at 0.1 m).
 TEST(TreeSolve, ADistanceJointsNewRestLengthReachesTheExactPasses) {
   World world(ExactHangingChain::settings());
   scenes::ChainOptions o;

@@ -216,6 +216,17 @@ INSTANTIATE_TEST_SUITE_P(TreeContacts, FoldedSolvePass,
                            return std::string(param.param.name);
                          });
 
+// Two worlds' chains link by link, bit for bit, and fallen and swung (not left where they
+// started).
+void expect_same_chain(const World& a, const scenes::ChainScene& chain_a, const World& b,
+                       const scenes::ChainScene& chain_b) {
+  const std::vector<BodyId>& links = chain_a.links.front();
+  for (std::size_t k = 0; k < links.size(); ++k) {
+    EXPECT_EQ(a.body(links[k]).position, b.body(chain_b.links.front()[k]).position) << "link " << k;
+  }
+  EXPECT_LT(a.body(links.back()).position.y(), -2.0);
+}
+
 // Damping takes the fold from the islands that have a damped body only (TreeSolver::Island::
 // damped): a chain whose links are undamped moves bit for bit the same whether a body elsewhere
 // is damped or not, stepped stage by stage (the other body free: not in a tree island) or island
@@ -267,13 +278,7 @@ TEST_P(DampedBodyElsewhere, LeavesTheChainItsFold) {
   ASSERT_EQ(damped.world.step_plan().tree_islands, pair ? 2u : 1u);
   // The damping did act where it was asked.
   EXPECT_NE(damped.world.body(damped.other).position, undamped.world.body(undamped.other).position);
-  const std::vector<BodyId>& links = damped.chain.links.front();
-  for (std::size_t k = 0; k < links.size(); ++k) {
-    EXPECT_EQ(damped.world.body(links[k]).position,
-              undamped.world.body(undamped.chain.links.front()[k]).position)
-        << "link " << k;
-  }
-  EXPECT_LT(damped.world.body(links.back()).position.y(), -2.0);  // fallen and swung
+  expect_same_chain(damped.world, damped.chain, undamped.world, undamped.chain);
 }
 
 // Contacts take the fold from the islands they touch only (TreeSolver::Island::contacted): a
@@ -293,13 +298,7 @@ TEST(TreeContacts, AContactElsewhereLeavesTheChainItsFold) {
   // The contact did act where it was given.
   EXPECT_GT(resting.world.body(resting.ball).position.y(), 0.5 * kRadius);
   EXPECT_LT(falling.world.body(falling.ball).position.y(), -1.0);
-  const std::vector<BodyId>& links = resting.chain.links.front();
-  for (std::size_t k = 0; k < links.size(); ++k) {
-    EXPECT_EQ(resting.world.body(links[k]).position,
-              falling.world.body(falling.chain.links.front()[k]).position)
-        << "link " << k;
-  }
-  EXPECT_LT(resting.world.body(links.back()).position.y(), -2.0);  // fallen and swung
+  expect_same_chain(resting.world, resting.chain, falling.world, falling.chain);
 }
 
 INSTANTIATE_TEST_SUITE_P(TreeContacts, DampedBodyElsewhere, ::testing::Values(false, true),

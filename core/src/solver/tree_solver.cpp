@@ -82,9 +82,6 @@ struct BallColumns {
                                                      const Vec6& va, const Vec6& vb) {
   return point_velocity(r_b, vb) - point_velocity(r_a, va);
 }
-[[gnu::always_inline]] inline FourDoubles four(const Eigen::Vector3d& r) {
-  return FourDoubles{r.x(), r.y(), r.z(), 0.0};
-}
 
 void fill_ball_rows(double sign, const Eigen::Vector3d& r, Jac& jac) {
   store_columns(ball_columns(sign, r), jac);
@@ -109,17 +106,18 @@ PoseNow pose_now(const simd::DeltaRecord& d) {
 
 // C of a joint whose anchors are `separation` apart (a distance joint's in row 0; padding 0;
 // a distance joint without an axis has no row, so 0).
-Eigen::Vector3d violation(const RowShape& shape, const Eigen::Vector3d& separation) {
-  if (shape.ball) return separation;
+Eigen::Vector3d violation(const TreeJoint& t, double rest_length,
+                          const Eigen::Vector3d& separation) {
+  if (t.ball) return separation;
   const double length = separation.norm();
-  return {length > 1e-9 ? length - shape.rest_length : 0.0, 0.0, 0.0};
+  return {length > 1e-9 ? length - rest_length : 0.0, 0.0, 0.0};
 }
 
 // How far the joint is from holding, m: |C|, and for a distance joint without an axis its
 // rest length (it has no row to say so).
-double violation_size(const RowShape& shape, const Eigen::Vector3d& separation) {
-  if (shape.ball) return separation.norm();
-  return std::abs(separation.norm() - shape.rest_length);
+double violation_size(const TreeJoint& t, double rest_length, const Eigen::Vector3d& separation) {
+  if (t.ball) return separation.norm();
+  return std::abs(separation.norm() - rest_length);
 }
 
 // Moves the deltas of the bodies `part` lists (island-local indices into the island's body
@@ -147,9 +145,9 @@ void move_positions(const std::vector<std::uint32_t>& part, const std::vector<st
 }
 
 // Joint j's rows at anchors r_a, r_b that are `separation` apart.
-void fill_jacobians(const RowShape& shape, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
+void fill_jacobians(const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
                     const Eigen::Vector3d& separation, TreeJoint& t) {
-  if (shape.ball) {
+  if (t.ball) {
     fill_ball_rows(-1.0, r_a, t.jacobian[0]);
     fill_ball_rows(1.0, r_b, t.jacobian[1]);
     store_arms(r_a, r_b, t);
@@ -179,19 +177,19 @@ void fill_jacobians(const RowShape& shape, const Eigen::Vector3d& r_a, const Eig
 // cannot forward (14 % of solve_island's samples on the whip, Zen 4).
 template <int N>
 [[gnu::always_inline]] inline void fill_jacobians_times(
-    const RowShape& shape, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
-    const Eigen::Vector3d& separation, const Vec6 (&va)[N], const Vec6 (&vb)[N], TreeJoint& t,
-    FourDoubles (&jv)[N], bool blocks) {
-  if (shape.ball) {
+    const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b, const Eigen::Vector3d& separation,
+    const Vec6 (&va)[N], const Vec6 (&vb)[N], TreeJoint& t, FourDoubles (&jv)[N], bool blocks) {
+  if (t.ball) {
     store_arms(r_a, r_b, t);
     if (blocks) {
       store_columns(ball_columns(-1.0, r_a), t.jacobian[0]);
       store_columns(ball_columns(1.0, r_b), t.jacobian[1]);
     }
-    for (int i = 0; i < N; ++i) jv[i] = ball_times(four(r_a), four(r_b), va[i], vb[i]);
+    for (int i = 0; i < N; ++i)
+      jv[i] = ball_times(load3(r_a.data()), load3(r_b.data()), va[i], vb[i]);
     return;
   }
-  fill_jacobians(shape, r_a, r_b, separation, t);
+  fill_jacobians(r_a, r_b, separation, t);
   for (int i = 0; i < N; ++i) {
     jv[i] = times_vector(t.jacobian[0], va[i]) + times_vector(t.jacobian[1], vb[i]);
   }
@@ -200,12 +198,11 @@ template <int N>
 // J v of joint j's rows at anchors r_a, r_b (`separation` apart), the rows not stored: a solve
 // pass that reuses a factor keeps that factor's Jacobians in the rows (Pass::reuse_relax_factor).
 // A ball joint's as fill_jacobians_times forms them (the same bits).
-FourDoubles jacobians_times(const RowShape& shape, const Eigen::Vector3d& r_a,
-                            const Eigen::Vector3d& r_b, const Eigen::Vector3d& separation,
-                            const Vec6& va, const Vec6& vb) {
-  if (shape.ball) return ball_times(four(r_a), four(r_b), va, vb);
-  TreeJoint rows;
-  fill_jacobians(shape, r_a, r_b, separation, rows);
+FourDoubles jacobians_times(bool ball, const Eigen::Vector3d& r_a, const Eigen::Vector3d& r_b,
+                            const Eigen::Vector3d& separation, const Vec6& va, const Vec6& vb) {
+  if (ball) return ball_times(load3(r_a.data()), load3(r_b.data()), va, vb);
+  TreeJoint rows;  // a distance joint's (TreeJoint::ball false)
+  fill_jacobians(r_a, r_b, separation, rows);
   return times_vector(rows.jacobian[0], va) + times_vector(rows.jacobian[1], vb);
 }
 
@@ -302,10 +299,8 @@ void TreeSolver::build(SolverMode mode, const JointSlots& joints, const BodySlot
     t.ball = slot.type == JointType::Ball;  // its rows come from ball_columns
     island.rows.push_back(t);
     // Every awake joint has a row here, also of kinds whose island then stays iterative.
-    island.shape.push_back({.ball = t.ball,
-                            .rest_length = slot.type == JointType::Distance
-                                               ? std::get<DistanceJointDef>(slot.def).rest_length
-                                               : 0.0});
+    island.rest_length.push_back(
+        slot.type == JointType::Distance ? std::get<DistanceJointDef>(slot.def).rest_length : 0.0);
   }
   for (std::size_t i = 0; i < roots.size(); ++i) {
     Island& island = candidates[i];
@@ -539,7 +534,8 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     }
     for (const std::uint32_t k : part.joints) {
       const std::int32_t ia = island.solver_a[k], ib = island.solver_b[k];
-      const RowShape& j = island.shape[k];
+      TreeJoint& t = island.rows[k];
+      const double rest_length = island.rest_length[k];
       if (which.step_start) {
         const JointSlot& slot = joints[island.joints[k]];
         const BodySlot& a = bodies[slot.body_a];
@@ -547,8 +543,8 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         island.anchor_a[k] = a.orientation * slot.local_anchor_a;
         island.anchor_b[k] = b.orientation * slot.local_anchor_b;
         island.offset[k] = b.position - a.position;
-        island.held_back[k] =
-            violation_size(j, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
+        island.held_back[k] = violation_size(
+            t, rest_length, island.offset[k] + island.anchor_b[k] - island.anchor_a[k]);
       }
       // At a step's start the bodies are where the step-start anchors were turned (their
       // deltas the identity): the anchors as they are, the same bits as turned again.
@@ -558,16 +554,15 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
                            : anchors_now(k);
       const Vec6 va = velocity_of(sb.velocity[static_cast<std::size_t>(ia)]);
       const Vec6 vb = velocity_of(sb.velocity[static_cast<std::size_t>(ib)]);
-      TreeJoint& t = island.rows[k];
       const bool blocks = island.system.reads_blocks(k);
-      Eigen::Vector3d c = violation(j, separation);
+      Eigen::Vector3d c = violation(t, rest_length, separation);
       FourDoubles jv;
       if (reuse_factor) {
         // A reused factor keeps its Jacobians (the relax pass's) for its solve; C is today's,
         // and at a step's start J v too (Pass::reuse_relax_factor says why).
         if (which.step_start) {
-          jv = jacobians_times(j, r_a, r_b, separation, va, vb);
-        } else if (j.ball) {  // its blocks may not be written (TreeSystem::reads_blocks)
+          jv = jacobians_times(t.ball, r_a, r_b, separation, va, vb);
+        } else if (t.ball) {  // its blocks may not be written (TreeSystem::reads_blocks)
           // r_a = a_0 and r_b = -a_1 (TreeJoint::arm), exactly
           jv = ball_times(load4(t.arm[0]), -load4(t.arm[1]), va, vb);
         } else {
@@ -576,7 +571,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       } else if (fold) {
         const Vec6 a[2] = {va, next_change(t.body[0], ia)}, b[2] = {vb, next_change(t.body[1], ib)};
         FourDoubles products[2];
-        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products, blocks);
+        fill_jacobians_times(r_a, r_b, separation, a, b, t, products, blocks);
         if (fold_apart) {
           jv = products[0];
           store3(island.next_change[k].data(), products[1]);
@@ -586,7 +581,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       } else {
         const Vec6 a[1] = {va}, b[1] = {vb};
         FourDoubles products[1];
-        fill_jacobians_times(j, r_a, r_b, separation, a, b, t, products, blocks);
+        fill_jacobians_times(r_a, r_b, separation, a, b, t, products, blocks);
         jv = products[0];
       }
       if (!with_bias) {
@@ -600,7 +595,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
         // row its turned part would pass for new.
         double& held = island.held_back[k];
         if (held > 0.0) {
-          const double size = violation_size(j, separation);
+          const double size = violation_size(t, rest_length, separation);
           held = std::min(held, size);  // the motion since may have closed some of it
           const double allowed = size - held + step;
           island.error[k] = size > allowed ? Eigen::Vector3d(c * (allowed / size)) : c;
@@ -699,7 +694,8 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
       for (const std::uint32_t k : part.joints) {
         island.anchors[k] = anchors_now(k);
         const Eigen::Vector3d left =
-            violation(island.shape[k], island.anchors[k].separation) - island.kept[k];
+            violation(island.rows[k], island.rest_length[k], island.anchors[k].separation) -
+            island.kept[k];
         island.rows[k].residual = left;
         worst = std::max(worst, left.cwiseAbs().maxCoeff());
       }
@@ -710,7 +706,7 @@ void TreeSolver::solve_island(Island& island, const JointSlots& joints, const Bo
     each_part([&](Part& part, int p) {
       for (const std::uint32_t k : part.joints) {
         const Anchors& now = island.anchors[k];
-        fill_jacobians(island.shape[k], now.r_a, now.r_b, now.separation, island.rows[k]);
+        fill_jacobians(now.r_a, now.r_b, now.separation, island.rows[k]);
       }
       island.system.factor_solve_up<1>(p, island.inverse_mass, island.rows, {});
     });
